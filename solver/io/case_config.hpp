@@ -1,0 +1,144 @@
+#pragma once
+// In-memory form of a YAML case file. Every parameter of the seed's tables can be
+// written; units are SI and appear in the field names. Defaults below are the
+// documented defaults (docs/case_file.md lists them with their allowed ranges).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "mesh/mesh.hpp"
+
+namespace hfdda::io {
+
+struct DomainConfig {
+  Rect outer{-50, 50, -50, 50};
+  std::optional<Rect> inner;  ///< finer, separately meshed inner domain (seed 3.1-3.5)
+};
+
+enum class MeshKind { structured, delaunay };
+
+struct MeshConfig {
+  MeshKind kind = MeshKind::structured;
+  // structured
+  double cell_size_m = 1.0;
+  double outer_growth = 1.2;
+  mesh::CellSplit split = mesh::CellSplit::two;
+  // delaunay
+  double max_area_inner_m2 = 1.0;
+  double max_area_outer_m2 = 10.0;
+  double min_angle_deg = 25.0;
+};
+
+/// An elastic material and where it applies: "all", "inner", "outer" or "box".
+/// Zones are applied in order, later zones override earlier ones (by block centroid).
+struct MaterialConfig {
+  std::string name = "rock";
+  std::string region = "all";
+  Rect box;
+  double youngs_modulus_Pa = 25.0e9;  // seed Table 3.1
+  double poissons_ratio = 0.25;
+  double density_kg_m3 = 2650.0;
+};
+
+/// Defaults of every joint; fractures may override them.
+struct JointConfig {
+  double tensile_strength_Pa = 0.0;
+  double cohesion_Pa = 0.0;
+  double friction_angle_deg = 30.0;
+  bool breakable = true;
+};
+
+/// A line feature: initial fracture, natural fracture, prescribed path or interface.
+/// Joints lying on it take its overrides.
+struct FractureConfig {
+  std::string name;
+  Vec2 from{0, 0}, to{0, 0};
+  double segment_length_m = 0.0;     ///< Delaunay constraint piece length (0: mesh size)
+  bool initially_open = false;
+  bool natural = false;
+  std::optional<bool> breakable;
+  std::optional<double> tensile_strength_Pa;
+  std::optional<double> cohesion_Pa;
+  std::optional<double> friction_angle_deg;
+  std::optional<double> pressure_Pa;  ///< prescribed fluid pressure on its joints
+  int line = 0;                       ///< case-file line, for error messages
+};
+
+/// Far-field stress (tension positive) applied as tractions t = sigma . n on the
+/// listed sides of the outer boundary (the seed applies it on top and bottom).
+struct FarFieldConfig {
+  double sxx_Pa = 0.0, syy_Pa = 0.0, sxy_Pa = 0.0;
+  std::vector<std::string> sides{"top", "bottom"};  ///< subset of left/right/bottom/top
+};
+
+struct PointLoadConfig {
+  Vec2 at{0, 0};
+  Vec2 force_N_per_m{0, 0};  ///< per metre of out-of-plane thickness
+  int line = 0;
+};
+
+struct FixedPointConfig {
+  Vec2 at{0, 0};
+  int line = 0;
+};
+
+enum class ContactMethod { penalty, augmented_lagrangian };
+
+struct ContactConfig {
+  ContactMethod method = ContactMethod::augmented_lagrangian;
+  double normal_stiffness_factor = 100.0;  ///< k_n = factor * max E  (seed Table 3.1)
+  double shear_stiffness_factor = 100.0;   ///< k_s = factor * max E
+  double vertex_vertex_activation_m = 1.0e-6;  ///< seed 2.3 (vi)
+  double fixed_point_stiffness_factor = 100.0;  ///< fixed-point penalty = factor * max E
+};
+
+enum class AnalysisKind { static_analysis, dynamic_analysis };
+
+struct NumericsConfig {
+  AnalysisKind analysis = AnalysisKind::static_analysis;  ///< static: velocities reset each step
+  double alm_force_tolerance = 1.0e-7;  ///< ALM stop: max |k g| <= tol * max |contact force|
+  int max_alm_iterations = 200;
+  int max_open_close_iterations = 200;
+  double tie_tolerance = 1.0e-3;        ///< seed 2.3 (iii): failures within 0.1 % split
+  bool shear_failure_of_intact_joints = false;  ///< false: seed 2.3 (ii), tension first
+};
+
+struct TimeConfig {
+  double dt_s = 1.0;
+  double end_time_s = 1.0;
+};
+
+struct OutputConfig {
+  int every_steps = 1;  ///< joint CSV and VTU every n steps (and always at the end); 0: end only
+  bool vtu = true;
+};
+
+struct CaseConfig {
+  std::string file;   ///< path of the (top) case file
+  std::string title;
+  DomainConfig domain;
+  MeshConfig mesh;
+  std::vector<MaterialConfig> materials{MaterialConfig{}};
+  JointConfig joints;
+  std::vector<FractureConfig> fractures;
+  FarFieldConfig far_field;
+  std::vector<PointLoadConfig> point_loads;
+  Vec2 body_force_N_m3{0, 0};
+  std::vector<FixedPointConfig> fixed_points;
+  ContactConfig contact;
+  NumericsConfig numerics;
+  TimeConfig time;
+  OutputConfig output;
+};
+
+/// Reads and validates a case file (and the file named by its `extends:` key, whose
+/// values it overrides). Throws InputError naming file, line, key and rule on an
+/// unknown key, a wrong type or an out-of-range value; nothing is written.
+CaseConfig load_case_file(const std::string& path);
+
+/// Same, from YAML text (`file_label` is used in error messages).
+CaseConfig load_case_text(const std::string& yaml_text, const std::string& file_label);
+
+}  // namespace hfdda::io

@@ -1,0 +1,107 @@
+#pragma once
+// Block mesh of the DDA model: polygonal blocks (triangles or quadrilaterals) that
+// share geometric points, the joints between them (every edge shared by two blocks,
+// seed section 2.3) and the free boundary edges where far-field tractions act.
+//
+// Geometric points are the future fluid nodes (one node per point, NOTES section 4);
+// each block keeps its own copy of its corners in the mechanics, so blocks can
+// separate while the mesh topology stays fixed (contact list built once, seed 2.3 iv).
+
+#include <string>
+#include <vector>
+
+#include "core/geometry.hpp"
+
+namespace hfdda::mesh {
+
+/// Strength and flags of one joint (bond between two blocks). SI units.
+struct JointProperties {
+  double tensile_strength_Pa = 0.0;   ///< T0, Rankine limit of the bond
+  double cohesion_Pa = 0.0;           ///< C0, Mohr-Coulomb cohesion of the bond
+  double friction_angle_rad = 0.0;    ///< phi
+  bool initially_open = false;        ///< bond already broken at t = 0 (initial fracture)
+  bool natural = false;               ///< belongs to a natural (pre-existing) fracture
+  bool breakable = true;              ///< false: the bond never fails ("may not break")
+  double prescribed_pressure_Pa = -1; ///< >= 0: fluid pressure prescribed on both faces
+};
+
+struct Block {
+  std::vector<int> points;  ///< geometric point ids, counter-clockwise
+  int material = 0;         ///< index into the case's material list
+};
+
+/// A joint: the edge shared by blocks a and b. Block a runs the edge p -> q starting
+/// at its local corner `corner_a`; block b runs it q -> p starting at `corner_b`.
+struct Joint {
+  int block_a = -1, corner_a = -1;
+  int block_b = -1, corner_b = -1;
+  int point_p = -1, point_q = -1;
+  JointProperties properties;
+};
+
+/// An edge on the outer boundary of the block assembly (one block only), p -> q
+/// counter-clockwise around the block, starting at local corner `corner`.
+struct BoundaryEdge {
+  int block = -1, corner = -1;
+  int point_p = -1, point_q = -1;
+};
+
+struct Mesh {
+  std::vector<Vec2> points;
+  std::vector<Block> blocks;
+  std::vector<Joint> joints;
+  std::vector<BoundaryEdge> boundary_edges;
+};
+
+/// A straight line feature of the model (initial fracture, natural fracture,
+/// prescribed path, material interface). Delaunay meshes use it as a constraint
+/// segment split into pieces no longer than `segment_length_m` (0: mesh size);
+/// structured meshes require it to follow grid lines.
+struct LineFeature {
+  std::string name;
+  Vec2 from{0, 0}, to{0, 0};
+  double segment_length_m = 0.0;
+};
+
+enum class CellSplit { none, two, four };  ///< quadrilaterals, 2 or 4 triangles per cell
+
+/// Structured mesh: square cells of `cell_size_m` inside `inner` (or the whole
+/// domain when no inner rectangle), cells growing geometrically by `outer_growth`
+/// from the inner rectangle to the outer boundary (tensor-product grid).
+struct StructuredMeshSpec {
+  Rect outer;
+  bool has_inner = false;
+  Rect inner;
+  double cell_size_m = 1.0;
+  double outer_growth = 1.2;
+  CellSplit split = CellSplit::two;
+};
+
+/// Constrained Delaunay mesh (CGAL): triangles no larger than max_area_inner_m2
+/// inside `inner` (or everywhere) and max_area_outer_m2 outside it, minimum angle
+/// bound for quality, and constraint segments (inner boundary + line features).
+struct DelaunayMeshSpec {
+  Rect outer;
+  bool has_inner = false;
+  Rect inner;
+  double max_area_inner_m2 = 1.0;
+  double max_area_outer_m2 = 10.0;
+  double min_angle_deg = 25.0;
+  std::vector<LineFeature> constraints;
+};
+
+Mesh build_structured_mesh(const StructuredMeshSpec& spec);
+Mesh build_delaunay_mesh(const DelaunayMeshSpec& spec);
+
+/// Fills joints and boundary edges from blocks and points (all joints get
+/// `defaults`). Throws ModelError on a degenerate or inverted (clockwise) block or
+/// an edge shared by more than two blocks.
+void build_topology(Mesh& mesh, const JointProperties& defaults);
+
+/// Ids of joints whose both end points lie on segment [a, b] (within tol metres).
+std::vector<int> joints_on_segment(const Mesh& mesh, const Vec2& a, const Vec2& b, double tol);
+
+/// Id of the point nearest to p.
+int nearest_point(const Mesh& mesh, const Vec2& p);
+
+}  // namespace hfdda::mesh
