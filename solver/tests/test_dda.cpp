@@ -1,0 +1,298 @@
+// Unit tests of the DDA mechanics (NOTES section 3 "tests that pin the mechanics down").
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "dda/block_kinematics.hpp"
+#include "dda/block_sparse_matrix.hpp"
+#include "dda/block_system.hpp"
+#include "dda/contacts.hpp"
+#include "mesh/mesh.hpp"
+
+namespace hfdda::dda {
+namespace {
+
+mesh::Mesh small_mesh(int nx, int ny, double h, mesh::CellSplit split) {
+  mesh::StructuredMeshSpec spec;
+  spec.outer = Rect{0.0, nx * h, 0.0, ny * h};
+  spec.cell_size_m = h;
+  spec.split = split;
+  mesh::Mesh m = mesh::build_structured_mesh(spec);
+  mesh::build_topology(m, mesh::JointProperties{});
+  return m;
+}
+
+MechanicsSettings alm_settings(double youngs_modulus) {
+  MechanicsSettings s;
+  s.normal_stiffness_N_m = s.shear_stiffness_N_m = s.fixed_point_stiffness_N_m = 100.0 * youngs_modulus;
+  s.alm_force_tolerance = 1e-10;
+  s.max_alm_iterations = 500;
+  return s;
+}
+
+/// Traction sigma . n on every boundary edge (n outward).
+void apply_uniform_stress(BlockSystem& system, const Eigen::Matrix2d& sigma) {
+  for (int e = 0; e < static_cast<int>(system.mesh().boundary_edges.size()); ++e) system.add_boundary_stress(e, sigma);
+}
+
+TEST(DdaKinematics, RigidBodyMotionHasNoStrainEnergy) {
+  const std::vector<Vec2> tri{{0.3, -0.2}, {1.7, 0.1}, {0.5, 1.4}};
+  const PolygonMoments g = polygon_moments(tri);
+  Mat6 k = Mat6::Zero();
+  k.block<3, 3>(3, 3) = g.area * plane_strain_elasticity(25e9, 0.25);
+  Vec6 rigid;
+  rigid << 0.01, -0.02, 1e-3, 0.0, 0.0, 0.0;
+  EXPECT_EQ(rigid.dot(k * rigid), 0.0);
+  // T reproduces a rigid rotation to first order: distances between corners are kept.
+  Vec6 rotation = Vec6::Zero();
+  rotation(2) = 1e-6;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i + 1; j < 3; ++j) {
+      const Vec2 ui = displacement_matrix(tri[i], g.centroid) * rotation;
+      const Vec2 uj = displacement_matrix(tri[j], g.centroid) * rotation;
+      EXPECT_NEAR((ui - uj).dot(tri[i] - tri[j]), 0.0, 1e-18);
+    }
+  // Strains produce the displacement gradient they name (NOTES erratum 1).
+  Vec6 strain = Vec6::Zero();
+  strain << 0, 0, 0, 1e-3, -2e-3, 4e-3;
+  const Vec2 u = displacement_matrix(g.centroid + Vec2(1.0, 0.0), g.centroid) * strain;
+  const Vec2 v = displacement_matrix(g.centroid + Vec2(0.0, 1.0), g.centroid) * strain;
+  EXPECT_NEAR(u.x(), 1e-3, 1e-15);        // du/dx = ex
+  EXPECT_NEAR(v.y(), -2e-3, 1e-15);       // dv/dy = ey
+  EXPECT_NEAR(u.y() + v.x(), 4e-3, 1e-15);  // dv/dx + du/dy = gxy
+}
+
+TEST(DdaKinematics, RigidTranslationOfWholeSystemCostsNothingInTheContacts) {
+  // A step with no loads on a bonded mesh leaves every block unstrained and at rest.
+  const mesh::Mesh m = small_mesh(3, 2, 1.0, mesh::CellSplit::two);
+  BlockSystem system(m, {Material{}}, alm_settings(25e9));
+  system.add_fixed_point({0.0, 0.0});
+  system.step(1.0);
+  for (int b = 0; b < system.n_blocks(); ++b) EXPECT_EQ(system.last_step_displacement()[b].norm(), 0.0);
+}
+
+class UniformStressPatch : public ::testing::TestWithParam<mesh::CellSplit> {};
+
+TEST_P(UniformStressPatch, IsReproducedInEveryBlock) {
+  const mesh::Mesh m = small_mesh(4, 3, 0.5, GetParam());
+  BlockSystem system(m, {Material{}}, alm_settings(25e9));
+  system.add_fixed_point({0.0, 0.0});
+  Eigen::Matrix2d sigma;
+  sigma << -3e6, 1e6, 1e6, -5e6;
+  apply_uniform_stress(system, sigma);
+  for (int step = 0; step < 3; ++step) system.step(1.0);
+  // Inertia (static analysis) delays equilibrium by rho h^2 / (E dt^2) ~ 1e-8 per step.
+  for (int b = 0; b < system.n_blocks(); ++b) {
+    const auto& s = system.stress(b);
+    EXPECT_NEAR(s(0), -3e6, 1.0) << "block " << b;
+    EXPECT_NEAR(s(1), -5e6, 1.0) << "block " << b;
+    EXPECT_NEAR(s(2), 1e6, 1.0) << "block " << b;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Splits, UniformStressPatch,
+                         ::testing::Values(mesh::CellSplit::two, mesh::CellSplit::four, mesh::CellSplit::none));
+
+/// Linear-triangle (CST) finite elements on the same mesh: the oracle for a DDA mesh
+/// whose joints are all locked with a converged ALM (conforming linear fields).
+struct CstSolution {
+  std::vector<Eigen::Vector3d> strain;  // (ex, ey, gxy) per triangle
+};
+
+CstSolution solve_cst(const mesh::Mesh& m, const Material& mat, double dt, double penalty,
+                      const std::vector<Vec2>& fixed, const std::vector<std::pair<Vec2, Vec2>>& loads) {
+  const int n = 2 * static_cast<int>(m.points.size());
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+  const Eigen::Matrix3d c = plane_strain_elasticity(mat.youngs_modulus_Pa, mat.poissons_ratio);
+  std::vector<Eigen::Matrix<double, 3, 6>> b_matrices;
+  for (const auto& block : m.blocks) {
+    const Vec2 p[3] = {m.points[block.points[0]], m.points[block.points[1]], m.points[block.points[2]]};
+    const double area = 0.5 * cross2(p[0], p[1], p[2]);
+    Eigen::Matrix<double, 3, 6> b = Eigen::Matrix<double, 3, 6>::Zero();
+    for (int i = 0; i < 3; ++i) {
+      const Vec2& pj = p[(i + 1) % 3];
+      const Vec2& pk = p[(i + 2) % 3];
+      const double dndx = (pj.y() - pk.y()) / (2 * area), dndy = (pk.x() - pj.x()) / (2 * area);
+      b(0, 2 * i) = dndx;
+      b(1, 2 * i + 1) = dndy;
+      b(2, 2 * i) = dndy;
+      b(2, 2 * i + 1) = dndx;
+    }
+    b_matrices.push_back(b);
+    Eigen::Matrix<double, 6, 6> ke = area * b.transpose() * c * b;
+    // Consistent mass: the DDA inertia term integrates the same linear field.
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int d = 0; d < 2; ++d)
+          ke(2 * i + d, 2 * j + d) += 2.0 / (dt * dt) * mat.density_kg_m3 * area / 12.0 * (i == j ? 2.0 : 1.0);
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) k(2 * block.points[i / 2] + i % 2, 2 * block.points[j / 2] + j % 2) += ke(i, j);
+  }
+  auto nearest = [&](const Vec2& x) { return mesh::nearest_point(m, x); };
+  for (const Vec2& x : fixed) {
+    const int p = nearest(x);
+    k(2 * p, 2 * p) += penalty;
+    k(2 * p + 1, 2 * p + 1) += penalty;
+  }
+  for (const auto& [x, force] : loads) f.segment<2>(2 * nearest(x)) += force;
+  const Eigen::VectorXd u = k.ldlt().solve(f);
+  CstSolution s;
+  for (std::size_t e = 0; e < m.blocks.size(); ++e) {
+    Eigen::Matrix<double, 6, 1> ue;
+    for (int i = 0; i < 6; ++i) ue(i) = u(2 * m.blocks[e].points[i / 2] + i % 2);
+    s.strain.push_back(b_matrices[e] * ue);
+  }
+  return s;
+}
+
+TEST(DdaAgainstCst, LockedJointsWithConvergedAlmGiveCstStrains) {
+  const mesh::Mesh m = small_mesh(4, 2, 1.0, mesh::CellSplit::two);
+  const Material mat{25e9, 0.25, 2650.0};
+  const MechanicsSettings settings = alm_settings(mat.youngs_modulus_Pa);
+  const std::vector<Vec2> fixed{{0.0, 0.0}, {0.0, 2.0}};
+  const std::vector<std::pair<Vec2, Vec2>> loads{{{4.0, 2.0}, {2e6, -1e6}}, {{4.0, 0.0}, {1e6, 0.0}}, {{2.0, 2.0}, {0.0, -3e6}}};
+  BlockSystem system(m, {mat}, settings);
+  for (const auto& x : fixed) system.add_fixed_point(x);
+  for (const auto& [x, force] : loads) system.add_point_load(x, force);
+  system.step(1.0);
+  const CstSolution oracle = solve_cst(m, mat, 1.0, settings.fixed_point_stiffness_N_m, fixed, loads);
+  double max_strain = 0.0, max_error = 0.0;
+  for (int b = 0; b < system.n_blocks(); ++b) {
+    const Eigen::Vector3d dda = system.last_step_displacement()[b].tail<3>();
+    max_strain = std::max(max_strain, oracle.strain[b].cwiseAbs().maxCoeff());
+    max_error = std::max(max_error, (dda - oracle.strain[b]).cwiseAbs().maxCoeff());
+  }
+  ASSERT_GT(max_strain, 1e-5);
+  EXPECT_LT(max_error, 1e-6 * max_strain) << "max strain " << max_strain;
+  for (const auto& c : system.contacts())
+    if (c.joint >= 0) EXPECT_EQ(c.state, ContactState::locked);
+}
+
+TEST(DdaAgainstCst, PenaltyMethodIsOnlyApproximate) {
+  // Without multiplier updates the joints stay compliant (1/k): the same problem
+  // deviates from the conforming solution. This guards the ALM test above against a
+  // vacuous pass.
+  const mesh::Mesh m = small_mesh(4, 2, 1.0, mesh::CellSplit::two);
+  const Material mat{25e9, 0.25, 2650.0};
+  MechanicsSettings settings = alm_settings(mat.youngs_modulus_Pa);
+  settings.augmented_lagrangian = false;
+  settings.normal_stiffness_N_m = settings.shear_stiffness_N_m = 10.0 * mat.youngs_modulus_Pa;
+  const std::vector<Vec2> fixed{{0.0, 0.0}, {0.0, 2.0}};
+  const std::vector<std::pair<Vec2, Vec2>> loads{{{4.0, 2.0}, {2e6, -1e6}}};
+  BlockSystem system(m, {mat}, settings);
+  for (const auto& x : fixed) system.add_fixed_point(x);
+  for (const auto& [x, force] : loads) system.add_point_load(x, force);
+  system.step(1.0);
+  const CstSolution oracle = solve_cst(m, mat, 1.0, settings.fixed_point_stiffness_N_m, fixed, loads);
+  double max_strain = 0.0, max_error = 0.0;
+  for (int b = 0; b < system.n_blocks(); ++b) {
+    max_strain = std::max(max_strain, oracle.strain[b].cwiseAbs().maxCoeff());
+    max_error = std::max(max_error, (system.last_step_displacement()[b].tail<3>() - oracle.strain[b]).cwiseAbs().maxCoeff());
+  }
+  EXPECT_GT(max_error, 1e-3 * max_strain);
+}
+
+TEST(DdaContacts, LinearisationMatchesFiniteDifferences) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Vec2 p1(0.4, 0.05), p2(0.0, 0.0), p3(1.0, 0.1);
+  const Vec2 cv(0.5, 0.6), ce(0.4, -0.5);
+  VertexEdgeSpring s;
+  s.reference_ratio = 0.35;
+  linearise_vertex_edge(p1, p2, p3, cv, ce, s);
+  EXPECT_NEAR(s.gap0, vertex_edge_gap(p1, p2, p3), 1e-15);
+  for (int trial = 0; trial < 20; ++trial) {
+    Vec6 dv, de;
+    for (int i = 0; i < 6; ++i) dv(i) = u(rng), de(i) = u(rng);
+    // The linearisation error must shrink like eps^2 (first-order exact).
+    double previous_error = 0.0;
+    for (double eps : {1e-3, 1e-4}) {
+      const Vec2 q1 = p1 + displacement_matrix(p1, cv) * (eps * dv);
+      const Vec2 q2 = p2 + displacement_matrix(p2, ce) * (eps * de);
+      const Vec2 q3 = p3 + displacement_matrix(p3, ce) * (eps * de);
+      const double exact = vertex_edge_gap(q1, q2, q3);
+      const double linear = s.gap0 + eps * (s.gap_vertex.dot(dv) + s.gap_edge.dot(de));
+      const double error = std::abs(exact - linear);
+      EXPECT_LT(error, 20.0 * eps * eps) << "eps " << eps;
+      if (previous_error > 1e-14) EXPECT_LT(error, previous_error * 0.05);
+      previous_error = error;
+      // Shear: position of the corner along the (moved) edge relative to the moved reference point.
+      const Vec2 q0 = q2 + s.reference_ratio * (q3 - q2);
+      const double exact_shear = (q1 - q0).dot((q3 - q2).normalized());
+      const double linear_shear = s.shear0 + eps * (s.shear_vertex.dot(dv) + s.shear_edge.dot(de));
+      EXPECT_LT(std::abs(exact_shear - linear_shear), 20.0 * eps * eps);
+    }
+  }
+}
+
+TEST(DdaSparse, CholmodSolveMatchesDenseSolve) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int nb = 5;
+  const std::vector<std::pair<int, int>> couplings{{0, 1}, {1, 2}, {3, 1}, {4, 0}, {2, 4}};
+  BlockSparseMatrix k(nb, couplings);
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(6 * nb, 6 * nb);
+  for (auto [i, j] : couplings) {
+    Mat6 m;
+    for (int a = 0; a < 36; ++a) m.data()[a] = u(rng);
+    k.add_coupling(k.coupling_slot(i, j), i, j, m);
+    dense.block<6, 6>(6 * i, 6 * j) += m;
+    dense.block<6, 6>(6 * j, 6 * i) += m.transpose();
+  }
+  for (int b = 0; b < nb; ++b) {
+    Mat6 r;
+    for (int a = 0; a < 36; ++a) r.data()[a] = u(rng);
+    const Mat6 spd = r * r.transpose() + 40.0 * Mat6::Identity();
+    k.add_diagonal(b, spd);
+    dense.block<6, 6>(6 * b, 6 * b) += spd;
+  }
+  Eigen::VectorXd x(6 * nb), rhs(6 * nb);
+  for (int i = 0; i < 6 * nb; ++i) x(i) = u(rng), rhs(i) = u(rng);
+  EXPECT_LT((k.multiply(x) - dense * x).norm(), 1e-12 * (dense * x).norm());
+  SpdSolver solver;
+  solver.factorize(k.matrix());
+  const Eigen::VectorXd sparse_solution = solver.solve(rhs);
+  const Eigen::VectorXd dense_solution = dense.llt().solve(rhs);
+  EXPECT_LT((sparse_solution - dense_solution).norm(), 1e-12 * dense_solution.norm());
+  // Refactorising new values reuses the symbolic analysis and stays correct.
+  k.add_diagonal(0, 10.0 * Mat6::Identity());
+  dense.block<6, 6>(0, 0) += 10.0 * Mat6::Identity();
+  solver.factorize(k.matrix());
+  EXPECT_LT((solver.solve(rhs) - dense.llt().solve(rhs)).norm(), 1e-12 * dense_solution.norm());
+  EXPECT_EQ(solver.factorizations(), 2);
+}
+
+TEST(DdaSparse, IndefiniteMatrixIsReported) {
+  BlockSparseMatrix k(1, {});
+  k.add_diagonal(0, -Mat6::Identity());
+  SpdSolver solver;
+  EXPECT_THROW(solver.factorize(k.matrix()), std::runtime_error);
+}
+
+TEST(DdaFracture, BondFailsInTensionOnlyNextToAnOpenPressurisedJoint) {
+  // Two rows of blocks bonded along y = 1; pulling the top apart breaks the bonds only
+  // when rule (i) of seed 2.3 is satisfied.
+  const mesh::Mesh m = small_mesh(2, 2, 1.0, mesh::CellSplit::none);
+  for (bool rule : {true, false}) {
+    MechanicsSettings settings = alm_settings(25e9);
+    settings.failure_needs_open_neighbour_and_fluid = rule;
+    BlockSystem system(m, {Material{}}, settings);
+    system.add_fixed_point({0.0, 0.0});
+    system.add_fixed_point({2.0, 0.0});
+    system.add_point_load({0.0, 2.0}, {0.0, 1e6});
+    system.add_point_load({2.0, 2.0}, {0.0, 1e6});
+    system.step(1.0);
+    int open = 0;
+    for (const auto& c : system.contacts()) open += c.joint >= 0 && c.state == ContactState::open;
+    if (rule)
+      EXPECT_EQ(open, 0);  // no fluid anywhere: T0 = 0 bonds hold
+    else
+      EXPECT_GT(open, 0);
+  }
+}
+
+}  // namespace
+}  // namespace hfdda::dda
