@@ -70,8 +70,8 @@ void BlockSystem::build_contacts() {
   const int n_joints = static_cast<int>(mesh_.joints.size());
   contacts_.clear();
   contacts_.reserve(2 * n_joints);
-  std::vector<std::pair<int, int>> couplings;
-  couplings.reserve(n_joints);
+  couplings_.clear();
+  couplings_.reserve(n_joints);
 
   auto n_of = [&](int b) { return static_cast<int>(mesh_.blocks[b].points.size()); };
   for (int j = 0; j < n_joints; ++j) {
@@ -102,7 +102,7 @@ void BlockSystem::build_contacts() {
       c.state = props.initially_open ? ContactState::open : ContactState::locked;
       contacts_.push_back(c);
     }
-    couplings.emplace_back(a, b);
+    couplings_.emplace_back(a, b);
   }
 
   // Vertex-vertex candidates: blocks sharing a point but no joint ending there.
@@ -130,14 +130,11 @@ void BlockSystem::build_contacts() {
         c.breakable = true;
         c.block_a = ba, c.corner_a = ka, c.block_c = bc, c.corner_c = kc;
         contacts_.push_back(c);
-        couplings.emplace_back(ba, bc);
       }
   }
-
-  stiffness_ = BlockSparseMatrix(n_blocks(), couplings);
-  for (auto& c : contacts_)
-    if (c.joint >= 0)
-      for (auto& s : c.springs) s.slot = stiffness_.coupling_slot(s.vertex_block, s.edge_block);
+  // Vertex-vertex pairs enter K's pattern only once one activates: they would
+  // otherwise multiply the off-diagonal blocks (and the fill) several times over.
+  rebuild_pattern();
 
   // Joint contacts by point, for the propagation rule (seed 2.3 i).
   contacts_at_point_offset_.assign(mesh_.points.size() + 1, 0);
@@ -146,6 +143,16 @@ void BlockSystem::build_contacts() {
   contacts_at_point_.assign(2 * n_joints, 0);
   std::vector<int> fill(contacts_at_point_offset_.begin(), contacts_at_point_offset_.end() - 1);
   for (int ci = 0; ci < 2 * n_joints; ++ci) contacts_at_point_[fill[contacts_[ci].point]++] = ci;
+}
+
+void BlockSystem::rebuild_pattern() {
+  stiffness_ = BlockSparseMatrix(n_blocks(), couplings_);
+  solver_.reset_pattern();
+  for (auto& c : contacts_)
+    if (c.joint >= 0 || c.vertex_vertex_active)
+      for (int k = 0; k < c.n_springs; ++k)
+        c.springs[k].slot = stiffness_.coupling_slot(c.springs[k].vertex_block, c.springs[k].edge_block);
+  pattern_changed_ = false;
 }
 
 // ----------------------------------------------------------------------------------
@@ -442,7 +449,6 @@ std::optional<VertexEdgeSpring> BlockSystem::vertex_vertex_spring(const Contact&
     VertexEdgeSpring s;
     s.vertex_block = vb, s.vertex_corner = vc, s.edge_block = eb;
     s.edge_corner = -d_next < -d_prev ? ec : (ec + n - 1) % n;  // the nearer edge is the reference line
-    s.slot = stiffness_.coupling_slot(vb, eb);
     return s;
   };
   if (auto s = try_orientation(c.block_a, c.corner_a, c.block_c, c.corner_c)) return s;
@@ -532,6 +538,11 @@ int BlockSystem::update_states(const Eigen::VectorXd& d, StepStatistics& stats) 
     }
     if (ch.vertex_vertex) {
       c.springs[0] = *ch.vertex_vertex;
+      if (!c.ever_active) {  // first activation: its block pair joins K's pattern
+        couplings_.emplace_back(c.block_a, c.block_c);
+        c.ever_active = true;
+        pattern_changed_ = true;
+      }
       c.vertex_vertex_active = true;
       c.friction_sign = 0.0;
       ++stats.vertex_vertex_activations;
@@ -548,6 +559,7 @@ int BlockSystem::update_states(const Eigen::VectorXd& d, StepStatistics& stats) 
       }
     }
   }
+  if (pattern_changed_) rebuild_pattern();
   stats.state_changes += applied;
   return applied;
 }
@@ -590,6 +602,7 @@ StepStatistics BlockSystem::step(double dt_s) {
     throw ConvergenceError(msg.str());
   } catch (...) {
     contacts_ = contacts_at_start;
+    rebuild_pattern();  // spring slots must point into the current pattern
     throw;
   }
 }

@@ -97,6 +97,7 @@ class BlockSystem {
   std::pair<double, double> contact_forces(int contact) const;
   /// Total displacement of a material point of block `block`, evaluated at its current position.
   const std::vector<Vec6>& last_step_displacement() const { return last_d_; }
+  bool joint_wetted(int joint) const { return joint_wetted_[joint] != 0; }
   int total_vertex_vertex_activations() const { return total_vv_activations_; }
   const MechanicsSettings& settings() const { return settings_; }
   const std::vector<Material>& materials() const { return materials_; }
@@ -117,6 +118,9 @@ class BlockSystem {
   };
 
   void build_contacts();
+  /// (Re)builds K's pattern from the joints and the active vertex-vertex contacts; a
+  /// new symbolic analysis follows at the next factorisation.
+  void rebuild_pattern();
   int block_containing(const Vec2& p) const;
   void update_block_geometry();
   void assemble_block_terms(double dt_s);
@@ -167,7 +171,9 @@ class BlockSystem {
   std::vector<int> contacts_at_point_offset_, contacts_at_point_;
   int total_vv_activations_ = 0;
   double gap_round_off_m_ = 0.0;  // gaps below this are round-off of the coordinates
-  std::vector<int> flips_;  // state changes of each contact within the current step
+  std::vector<int> flips_;
+  std::vector<std::pair<int, int>> couplings_;  // block pairs in K's pattern
+  bool pattern_changed_ = false;  // state changes of each contact within the current step
 
   BlockSparseMatrix stiffness_;
   SpdSolver solver_;

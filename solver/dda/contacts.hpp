@@ -60,6 +60,7 @@ struct Contact {
 
   // Vertex-vertex candidates only: the two blocks and their corners at `point`.
   bool vertex_vertex_active = false;
+  bool ever_active = false;  ///< its block pair is in K's pattern
   int block_a = -1, corner_a = -1, block_c = -1, corner_c = -1;
 };
 

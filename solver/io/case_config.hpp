@@ -29,6 +29,7 @@ struct MeshConfig {
   double max_area_inner_m2 = 1.0;
   double max_area_outer_m2 = 10.0;
   double min_angle_deg = 25.0;
+  int line = 0;  ///< case-file line of the `mesh` section, for mesh errors
 };
 
 /// An elastic material and where it applies: "all", "inner", "outer" or "box".
@@ -40,6 +41,7 @@ struct MaterialConfig {
   double youngs_modulus_Pa = 25.0e9;  // seed Table 3.1
   double poissons_ratio = 0.25;
   double density_kg_m3 = 2650.0;
+  int line = 0;  ///< case-file line of the list item
 };
 
 /// Defaults of every joint; fractures may override them.
@@ -117,6 +119,7 @@ struct OutputConfig {
 
 struct CaseConfig {
   std::string file;   ///< path of the (top) case file
+  std::string mesh_file;  ///< file that set the `mesh` section (the top file or a base it extends)
   std::string title;
   DomainConfig domain;
   MeshConfig mesh;
@@ -140,5 +143,9 @@ CaseConfig load_case_file(const std::string& path);
 
 /// Same, from YAML text (`file_label` is used in error messages).
 CaseConfig load_case_text(const std::string& yaml_text, const std::string& file_label);
+
+/// The key reference (Markdown) that docs/case_file.md holds, generated from the key
+/// tables that drive parsing and validation, so the two cannot drift (STYLE.md item 7).
+std::string case_file_reference_markdown();
 
 }  // namespace hfdda::io

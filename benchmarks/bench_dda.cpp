@@ -1,0 +1,113 @@
+// Time of one DDA step (assembly, CHOLMOD factorisation, ALM solves, open-close checks)
+// on triangulated meshes of about 1k, 4k and 16k blocks, and of one factorisation of K
+// alone (the floor a step is compared against). Issue target: a 16k-block step < 1 s.
+//
+// Problem: a square of 4-triangle cells under 5 MPa vertical compression with a
+// pressurised, initially open crack across its middle third (a Griffith-like load),
+// all joints bonded, ALM contacts, fixed corners.
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+
+#include "dda/block_system.hpp"
+#include "mesh/mesh.hpp"
+
+namespace {
+
+using namespace hfdda;
+
+std::unique_ptr<dda::BlockSystem> make_system(int cells_per_side) {
+  const double h = 1.0, half = 0.5 * cells_per_side * h;
+  mesh::StructuredMeshSpec spec;
+  spec.outer = Rect{-half, half, -half, half};
+  spec.cell_size_m = h;
+  spec.split = mesh::CellSplit::four;
+  mesh::Mesh m = mesh::build_structured_mesh(spec);
+  mesh::build_topology(m, mesh::JointProperties{0.0, 0.0, 0.5236, false, false, false, -1.0});
+  const double crack = std::floor(half / 3.0);
+  std::vector<double> pressure(m.points.size(), 0.0);
+  std::vector<char> wetted(m.joints.size(), 0);
+  for (int j : mesh::joints_on_segment(m, {-crack, 0.0}, {crack, 0.0}, 1e-9)) {
+    m.joints[j].properties.initially_open = true;
+    wetted[j] = 1;
+    pressure[m.joints[j].point_p] = pressure[m.joints[j].point_q] = 9.81e6;
+  }
+  dda::MechanicsSettings settings;  // k = 100 E for E = 25 GPa
+  auto system = std::make_unique<dda::BlockSystem>(m, std::vector<dda::Material>{dda::Material{}}, settings);
+  for (double sx : {-half, half})
+    for (double sy : {-half, half}) system->add_fixed_point({sx, sy});
+  Eigen::Matrix2d far_field;
+  far_field << 0.0, 0.0, 0.0, -5e6;
+  for (int e = 0; e < static_cast<int>(m.boundary_edges.size()); ++e) {
+    const auto& edge = m.boundary_edges[e];
+    if (std::abs(std::abs(m.points[edge.point_p].y()) - half) < 1e-9 &&
+        std::abs(std::abs(m.points[edge.point_q].y()) - half) < 1e-9)
+      system->add_boundary_stress(e, far_field);
+  }
+  system->set_fluid_pressure(pressure, wetted);
+  return system;
+}
+
+void add_counters(benchmark::State& state, const dda::BlockSystem& system, const dda::StepStatistics& last) {
+  state.counters["blocks"] = system.n_blocks();
+  state.counters["unknowns"] = 6.0 * system.n_blocks();
+  state.counters["nnz_K_lower"] = static_cast<double>(system.stiffness().matrix().nonZeros());
+  state.counters["open_close_iterations"] = last.open_close_iterations;
+  state.counters["alm_iterations"] = last.alm_iterations;
+  state.counters["factorize_s"] = last.seconds_factorization / std::max(1, last.factorizations);
+  state.counters["assembly_s"] = last.seconds_assembly;
+  state.counters["solve_s"] = last.seconds_solve;
+}
+
+// A first step from rest (loads applied, contacts settling): the realistic cost.
+void BM_DdaFirstStep(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  dda::StepStatistics last;
+  std::unique_ptr<dda::BlockSystem> system;
+  for (auto _ : state) {
+    state.PauseTiming();
+    system = make_system(n);
+    state.ResumeTiming();
+    last = system->step(1.0);
+  }
+  add_counters(state, *system, last);
+  if (4 * n * n >= 16000) state.counters["target_s"] = 1.0;
+}
+
+// A step from an equilibrated state (one open-close iteration).
+void BM_DdaSteadyStep(benchmark::State& state) {
+  auto system = make_system(static_cast<int>(state.range(0)));
+  system->step(1.0);
+  dda::StepStatistics last;
+  for (auto _ : state) last = system->step(1.0);
+  add_counters(state, *system, last);
+}
+
+// One numeric CHOLMOD factorisation of K (symbolic analysis reused): the floor.
+void BM_FactorizeK(benchmark::State& state) {
+  auto system = make_system(static_cast<int>(state.range(0)));
+  system->step(1.0);
+  dda::SpdSolver solver;
+  solver.factorize(system->stiffness().matrix());  // symbolic analysis outside the loop
+  for (auto _ : state) solver.factorize(system->stiffness().matrix());
+  state.counters["blocks"] = system->n_blocks();
+  state.counters["nnz_K_lower"] = static_cast<double>(system->stiffness().matrix().nonZeros());
+}
+
+// Cells per side n gives 4 n^2 blocks: 16 -> 1024, 32 -> 4096, 64 -> 16384.
+BENCHMARK(BM_DdaFirstStep)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DdaSteadyStep)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FactorizeK)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::AddCustomContext("hfdda_build_type", HFDDA_BUILD_TYPE);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

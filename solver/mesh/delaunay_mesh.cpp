@@ -1,0 +1,243 @@
+// Unstructured triangular block mesh: CGAL constrained Delaunay triangulation refined
+// by Delaunay refinement (Ruppert / Shewchuk, CGAL Mesh_2) with a size bound per
+// region (inner rectangle / rest of the domain) and a minimum-angle bound.
+//
+// Line features (fractures, interfaces) are constraints pre-split into pieces of the
+// requested joint length, so that a fracture is made of joints of that length; the
+// refinement may split a piece further when a new point encroaches on it.
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "mesh/mesh.hpp"
+
+namespace hfdda::mesh {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;  // info: point id
+using FaceBase = CGAL::Delaunay_mesh_face_base_2<Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+// Exact_predicates_tag: crossing line features are allowed; their intersection points
+// are constructed (inexactly) and become mesh points.
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
+
+// Above this the standard Delaunay refinement has no termination guarantee even for
+// inputs without small angles (Shewchuk's Triangle works up to about 33 degrees).
+constexpr double kMaxMinAngleDeg = 33.0;
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+void require(bool ok, const std::string& rule) {
+  if (!ok) throw ModelError("Delaunay mesh: " + rule);
+}
+
+void validate(const DelaunayMeshSpec& spec) {
+  require(spec.outer.width() > 0.0 && spec.outer.height() > 0.0,
+          "outer rectangle must have positive width and height");
+  if (spec.has_inner) {
+    require(spec.inner.width() > 0.0 && spec.inner.height() > 0.0,
+            "inner rectangle must have positive width and height");
+    require(spec.outer.contains(spec.inner), "inner rectangle must lie inside the outer rectangle");
+    require(std::isfinite(spec.max_area_inner_m2) && spec.max_area_inner_m2 > 0.0,
+            "max_area_inner_m2 = " + num(spec.max_area_inner_m2) + " must be > 0");
+  }
+  require(std::isfinite(spec.max_area_outer_m2) && spec.max_area_outer_m2 > 0.0,
+          "max_area_outer_m2 = " + num(spec.max_area_outer_m2) + " must be > 0");
+  require(spec.min_angle_deg >= 0.0 && spec.min_angle_deg <= kMaxMinAngleDeg,
+          "min_angle_deg = " + num(spec.min_angle_deg) + " must be in [0, " +
+              num(kMaxMinAngleDeg) + "]");
+  const double tol = 1e-9 * std::hypot(spec.outer.width(), spec.outer.height());
+  for (const LineFeature& f : spec.constraints) {
+    const std::string name = "line feature '" + f.name + "'";
+    require(spec.outer.contains(f.from, tol) && spec.outer.contains(f.to, tol),
+            name + " must lie inside the outer rectangle");
+    require((f.to - f.from).norm() > tol, name + " has zero length");
+    require(std::isfinite(f.segment_length_m) && f.segment_length_m >= 0.0,
+            name + ": segment_length_m = " + num(f.segment_length_m) + " must be >= 0");
+  }
+}
+
+/// Which triangles Delaunay refinement must split. A triangle is imperatively bad
+/// when its area exceeds the bound of the region holding its centroid (triangles never
+/// straddle the inner rectangle, whose boundary is constrained), and bad when its
+/// smallest angle is below the bound. The angle test is skipped for triangles whose
+/// shortest edge is below `min_edge_m`: near small input angles (fractures crossing
+/// at a shallow angle) such triangles cannot be improved and would make the
+/// refinement cascade; this is the usual practical guard (as in Triangle).
+class RegionCriteria {
+ public:
+  struct Quality {
+    double sine2 = 1.0;       ///< squared sine of the smallest angle
+    double size_ratio = 0.0;  ///< area / region's area bound
+
+    // q1 < q2: q1 is refined first. Oversized triangles first, largest first, then the
+    // worst-shaped ones (as CGAL::Delaunay_mesh_size_criteria_2).
+    bool operator<(const Quality& q) const {
+      if (size_ratio > 1.0 || q.size_ratio > 1.0) return size_ratio > q.size_ratio;
+      return sine2 < q.sine2;
+    }
+  };
+
+  explicit RegionCriteria(const DelaunayMeshSpec& spec)
+      : has_inner_(spec.has_inner), inner_(spec.inner),
+        max_area_inner_m2_(spec.max_area_inner_m2), max_area_outer_m2_(spec.max_area_outer_m2),
+        min_sine2_(std::pow(std::sin(spec.min_angle_deg * std::numbers::pi / 180.0), 2)),
+        domain_diagonal_m_(std::hypot(spec.outer.width(), spec.outer.height())) {}
+
+  class Is_bad {
+   public:
+    explicit Is_bad(const RegionCriteria& c) : c_(&c) {}
+
+    CGAL::Mesh_2::Face_badness operator()(const Quality& q) const {
+      if (q.size_ratio > 1.0) return CGAL::Mesh_2::IMPERATIVELY_BAD;
+      return q.sine2 < c_->min_sine2_ ? CGAL::Mesh_2::BAD : CGAL::Mesh_2::NOT_BAD;
+    }
+
+    CGAL::Mesh_2::Face_badness operator()(const Cdt::Face_handle& f, Quality& q) const {
+      const Vec2 a = to_vec(f->vertex(0)->point());
+      const Vec2 b = to_vec(f->vertex(1)->point());
+      const Vec2 c = to_vec(f->vertex(2)->point());
+      const double twice_area = cross2(a, b, c);
+      const double max_area = c_->area_bound((a + b + c) / 3.0);
+      q.size_ratio = 0.5 * twice_area / max_area;
+      std::array<double, 3> edge2{(b - c).squaredNorm(), (c - a).squaredNorm(),
+                                  (a - b).squaredNorm()};
+      std::sort(edge2.begin(), edge2.end());
+      const double min_edge = c_->min_edge_m(max_area);
+      // The smallest angle lies between the two longest edges: 2A = |e1||e2| sin(angle).
+      q.sine2 = edge2[0] < min_edge * min_edge ? 1.0
+                                               : twice_area * twice_area / (edge2[1] * edge2[2]);
+      return (*this)(q);
+    }
+
+   private:
+    static Vec2 to_vec(const Kernel::Point_2& p) { return {p.x(), p.y()}; }
+    const RegionCriteria* c_;  ///< not owned: the mesher's copy, which outlives every Is_bad
+  };
+
+  Is_bad is_bad_object() const { return Is_bad(*this); }
+
+  double area_bound(const Vec2& centroid) const {
+    return has_inner_ && inner_.contains(centroid) ? max_area_inner_m2_ : max_area_outer_m2_;
+  }
+  double min_edge_m(double area_bound) const {
+    return 1e-3 * std::min(std::sqrt(area_bound), domain_diagonal_m_);
+  }
+
+ private:
+  bool has_inner_;
+  Rect inner_;
+  double max_area_inner_m2_, max_area_outer_m2_;
+  double min_sine2_;  ///< sin^2 of min_angle_deg, CGAL's shape bound B
+  double domain_diagonal_m_;
+};
+
+Cdt::Point point_of(const Vec2& p) { return {p.x(), p.y()}; }
+
+void insert_rectangle(Cdt& cdt, const Rect& r) {
+  const std::vector<Cdt::Point> corners{
+      {r.xmin, r.ymin}, {r.xmax, r.ymin}, {r.xmax, r.ymax}, {r.xmin, r.ymax}};
+  cdt.insert_constraint(corners.begin(), corners.end(), /*close=*/true);
+}
+
+/// Number of constraint pieces of a feature: equal pieces no longer than its
+/// segment length (the 1e-9 keeps an exact multiple from gaining a sliver piece).
+int piece_count(const LineFeature& f) {
+  if (f.segment_length_m <= 0.0) return 1;
+  return std::max(1, static_cast<int>(std::ceil((f.to - f.from).norm() / f.segment_length_m - 1e-9)));
+}
+
+void insert_feature(Cdt& cdt, const LineFeature& f, const Rect& outer) {
+  // End points within round-off outside the domain are pulled onto its boundary: a
+  // point outside would enlarge the convex hull by a sliver that is not domain.
+  const Vec2 lo(outer.xmin, outer.ymin), hi(outer.xmax, outer.ymax);
+  const auto inside = [&](const Vec2& p) -> Vec2 { return p.cwiseMax(lo).cwiseMin(hi); };
+  const int n = piece_count(f);
+  Cdt::Vertex_handle previous = cdt.insert(point_of(inside(f.from)));
+  for (int k = 1; k <= n; ++k) {
+    const Vec2 p = k == n ? f.to : Vec2(f.from + (f.to - f.from) * (static_cast<double>(k) / n));
+    const Cdt::Vertex_handle next = cdt.insert(point_of(inside(p)));
+    cdt.insert_constraint(previous, next);
+    previous = next;
+  }
+}
+
+/// Expected number of mesh points, to stop a refinement that does not terminate.
+double expected_points(const DelaunayMeshSpec& spec) {
+  const double inner_area = spec.has_inner ? spec.inner.width() * spec.inner.height() : 0.0;
+  const double outer_area = spec.outer.width() * spec.outer.height() - inner_area;
+  double count = outer_area / spec.max_area_outer_m2;
+  if (spec.has_inner) count += inner_area / spec.max_area_inner_m2;
+  for (const LineFeature& f : spec.constraints) count += piece_count(f);
+  return count;
+}
+
+void refine(Cdt& cdt, const DelaunayMeshSpec& spec) {
+  const double expected = expected_points(spec);
+  require(expected < 2e7,
+          "about " + num(expected) + " points requested: too many (check the area bounds)");
+  // Shape-quality refinement produces a few times the size-bound estimate; far beyond
+  // that, refinement is cascading (min angle too large for the input's small angles).
+  const double budget = 20.0 * expected + 10000.0;
+  CGAL::Delaunay_mesher_2<Cdt, RegionCriteria> mesher(cdt, RegionCriteria(spec));
+  mesher.init();
+  while (mesher.step_by_step_refine_mesh()) {
+    if (static_cast<double>(cdt.number_of_vertices()) > budget)
+      throw ModelError("Delaunay mesh: refinement exceeded " + num(budget) +
+                       " points without terminating; lower min_angle_deg = " + num(spec.min_angle_deg) +
+                       " (line features crossing at small angles need a smaller bound)");
+  }
+}
+
+/// Blocks from the triangles inside the domain, points numbered in order of first use.
+Mesh extract_mesh(Cdt& cdt) {
+  Mesh mesh;
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) v->info() = -1;
+  mesh.blocks.reserve(cdt.number_of_faces());
+  mesh.points.reserve(cdt.number_of_vertices());
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    if (!f->is_in_domain()) continue;
+    Block& block = mesh.blocks.emplace_back();
+    for (int i = 0; i < 3; ++i) {  // CGAL faces are counter-clockwise
+      const Cdt::Vertex_handle v = f->vertex(i);
+      if (v->info() < 0) {
+        v->info() = static_cast<int>(mesh.points.size());
+        mesh.points.emplace_back(v->point().x(), v->point().y());
+      }
+      block.points.push_back(v->info());
+    }
+  }
+  return mesh;
+}
+
+}  // namespace
+
+Mesh build_delaunay_mesh(const DelaunayMeshSpec& spec) {
+  validate(spec);
+  Cdt cdt;
+  insert_rectangle(cdt, spec.outer);
+  if (spec.has_inner) insert_rectangle(cdt, spec.inner);
+  for (const LineFeature& f : spec.constraints) insert_feature(cdt, f, spec.outer);
+  refine(cdt, spec);
+  return extract_mesh(cdt);
+}
+
+}  // namespace hfdda::mesh

@@ -1,0 +1,193 @@
+#include "simulation/model.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace hfdda::simulation {
+
+namespace {
+
+std::string format_point(const Vec2& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ")";
+  return s.str();
+}
+
+double domain_size(const io::CaseConfig& c) { return std::max(c.domain.outer.width(), c.domain.outer.height()); }
+
+bool in_region(const io::MaterialConfig& zone, const io::CaseConfig& c, const Vec2& centroid) {
+  if (zone.region == "all") return true;
+  if (zone.region == "box") return zone.box.contains(centroid);
+  const bool inside_inner = c.domain.inner && c.domain.inner->contains(centroid);
+  return zone.region == "inner" ? inside_inner : !inside_inner;
+}
+
+void assign_materials(mesh::Mesh& m, const io::CaseConfig& c) {
+  std::vector<int> blocks_per_zone(c.materials.size(), 0);
+  for (auto& block : m.blocks) {
+    std::vector<Vec2> corners;
+    for (int p : block.points) corners.push_back(m.points[p]);
+    const Vec2 centroid = polygon_moments(corners).centroid;
+    block.material = 0;
+    for (std::size_t z = 0; z < c.materials.size(); ++z)
+      if (in_region(c.materials[z], c, centroid)) block.material = static_cast<int>(z);
+  }
+  for (const auto& block : m.blocks) ++blocks_per_zone[block.material];
+  for (std::size_t z = 0; z < c.materials.size(); ++z)
+    if (blocks_per_zone[z] == 0)
+      throw InputError(c.file, c.materials[z].line, "materials[" + std::to_string(z) + "]",
+                       "region '" + c.materials[z].region + "' contains no block of the mesh (empty region)");
+}
+
+mesh::JointProperties default_joint_properties(const io::CaseConfig& c) {
+  mesh::JointProperties p;
+  p.tensile_strength_Pa = c.joints.tensile_strength_Pa;
+  p.cohesion_Pa = c.joints.cohesion_Pa;
+  p.friction_angle_rad = c.joints.friction_angle_deg * std::numbers::pi / 180.0;
+  p.breakable = c.joints.breakable;
+  return p;
+}
+
+/// Joints along each fracture take its overrides; a fracture must be made of joints.
+std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c) {
+  std::vector<int> fracture_of_joint(m.joints.size(), -1);
+  const double tol = 1e-6 * domain_size(c);
+  for (std::size_t f = 0; f < c.fractures.size(); ++f) {
+    const io::FractureConfig& fr = c.fractures[f];
+    const std::string key = "fractures[" + std::to_string(f) + "]";
+    const std::vector<int> on = mesh::joints_on_segment(m, fr.from, fr.to, tol);
+    double covered = 0.0;
+    for (int j : on) covered += (m.points[m.joints[j].point_q] - m.points[m.joints[j].point_p]).norm();
+    const double length = (fr.to - fr.from).norm();
+    if (std::abs(covered - length) > 1e-6 * length) {
+      std::ostringstream rule;
+      rule << "fracture from " << format_point(fr.from) << " to " << format_point(fr.to)
+           << " does not follow mesh edges (joints cover " << covered << " m of " << length
+           << " m); on a structured mesh a fracture must lie on grid lines";
+      throw InputError(c.file, fr.line, key, rule.str());
+    }
+    for (int j : on) {
+      mesh::JointProperties& p = m.joints[j].properties;
+      fracture_of_joint[j] = static_cast<int>(f);
+      p.initially_open = p.initially_open || fr.initially_open;
+      p.natural = p.natural || fr.natural;
+      if (fr.breakable) p.breakable = *fr.breakable;
+      if (fr.tensile_strength_Pa) p.tensile_strength_Pa = *fr.tensile_strength_Pa;
+      if (fr.cohesion_Pa) p.cohesion_Pa = *fr.cohesion_Pa;
+      if (fr.friction_angle_deg) p.friction_angle_rad = *fr.friction_angle_deg * std::numbers::pi / 180.0;
+      if (fr.pressure_Pa) p.prescribed_pressure_Pa = *fr.pressure_Pa;
+    }
+  }
+  return fracture_of_joint;
+}
+
+/// Boundary edges on one side of the outer rectangle.
+bool edge_on_side(const mesh::Mesh& m, const mesh::BoundaryEdge& e, const Rect& outer, const std::string& side,
+                  double tol) {
+  const Vec2& p = m.points[e.point_p];
+  const Vec2& q = m.points[e.point_q];
+  if (side == "left") return std::abs(p.x() - outer.xmin) < tol && std::abs(q.x() - outer.xmin) < tol;
+  if (side == "right") return std::abs(p.x() - outer.xmax) < tol && std::abs(q.x() - outer.xmax) < tol;
+  if (side == "bottom") return std::abs(p.y() - outer.ymin) < tol && std::abs(q.y() - outer.ymin) < tol;
+  return std::abs(p.y() - outer.ymax) < tol && std::abs(q.y() - outer.ymax) < tol;  // top
+}
+
+}  // namespace
+
+mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
+  const std::string& mesh_file = c.mesh_file.empty() ? c.file : c.mesh_file;
+  mesh::Mesh m;
+  try {
+    if (c.mesh.kind == io::MeshKind::structured) {
+      mesh::StructuredMeshSpec spec;
+      spec.outer = c.domain.outer;
+      spec.has_inner = c.domain.inner.has_value();
+      if (spec.has_inner) spec.inner = *c.domain.inner;
+      spec.cell_size_m = c.mesh.cell_size_m;
+      spec.outer_growth = c.mesh.outer_growth;
+      spec.split = c.mesh.split;
+      m = mesh::build_structured_mesh(spec);
+    } else {
+      mesh::DelaunayMeshSpec spec;
+      spec.outer = c.domain.outer;
+      spec.has_inner = c.domain.inner.has_value();
+      if (spec.has_inner) spec.inner = *c.domain.inner;
+      spec.max_area_inner_m2 = c.mesh.max_area_inner_m2;
+      spec.max_area_outer_m2 = c.mesh.max_area_outer_m2;
+      spec.min_angle_deg = c.mesh.min_angle_deg;
+      for (const auto& f : c.fractures) spec.constraints.push_back({f.name, f.from, f.to, f.segment_length_m});
+      m = mesh::build_delaunay_mesh(spec);
+    }
+    mesh::build_topology(m, default_joint_properties(c));
+  } catch (const ModelError& e) {
+    throw InputError(mesh_file, c.mesh.line, "mesh", e.what());
+  }
+  return m;
+}
+
+dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
+  double max_modulus = 0.0;
+  for (const auto& m : c.materials) max_modulus = std::max(max_modulus, m.youngs_modulus_Pa);
+  dda::MechanicsSettings s;
+  s.augmented_lagrangian = c.contact.method == io::ContactMethod::augmented_lagrangian;
+  s.normal_stiffness_N_m = c.contact.normal_stiffness_factor * max_modulus;
+  s.shear_stiffness_N_m = c.contact.shear_stiffness_factor * max_modulus;
+  s.fixed_point_stiffness_N_m = c.contact.fixed_point_stiffness_factor * max_modulus;
+  s.vertex_vertex_activation_m = c.contact.vertex_vertex_activation_m;
+  s.alm_force_tolerance = c.numerics.alm_force_tolerance;
+  s.max_alm_iterations = c.numerics.max_alm_iterations;
+  s.max_open_close_iterations = c.numerics.max_open_close_iterations;
+  s.tie_tolerance = c.numerics.tie_tolerance;
+  s.shear_failure_of_intact_joints = c.numerics.shear_failure_of_intact_joints;
+  s.dynamic = c.numerics.analysis == io::AnalysisKind::dynamic_analysis;
+  return s;
+}
+
+Model build_model(const io::CaseConfig& c) {
+  const auto start = std::chrono::steady_clock::now();
+  Model model;
+  model.config = c;
+  mesh::Mesh m = build_case_mesh(c);
+  assign_materials(m, c);
+  model.fracture_of_joint = apply_fractures(m, c);
+
+  std::vector<dda::Material> materials;
+  for (const auto& mc : c.materials) materials.push_back({mc.youngs_modulus_Pa, mc.poissons_ratio, mc.density_kg_m3});
+  model.system = std::make_unique<dda::BlockSystem>(m, std::move(materials), mechanics_settings(c));
+  dda::BlockSystem& system = *model.system;
+
+  for (const auto& fp : c.fixed_points) system.add_fixed_point(fp.at);
+  for (const auto& pl : c.point_loads) system.add_point_load(pl.at, pl.force_N_per_m);
+  system.set_body_force(c.body_force_N_m3);
+
+  Eigen::Matrix2d far_field;
+  far_field << c.far_field.sxx_Pa, c.far_field.sxy_Pa, c.far_field.sxy_Pa, c.far_field.syy_Pa;
+  if (far_field.norm() > 0.0) {
+    const double tol = 1e-9 * domain_size(c);
+    for (int e = 0; e < static_cast<int>(m.boundary_edges.size()); ++e)
+      for (const std::string& side : c.far_field.sides)
+        if (edge_on_side(m, m.boundary_edges[e], c.domain.outer, side, tol)) system.add_boundary_stress(e, far_field);
+  }
+
+  // Prescribed fluid pressure: on both faces of the fracture's joints and at their points.
+  std::vector<double> point_pressure(m.points.size(), 0.0);
+  std::vector<char> wetted(m.joints.size(), 0);
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    const double p = m.joints[j].properties.prescribed_pressure_Pa;
+    if (p < 0.0) continue;
+    wetted[j] = 1;
+    point_pressure[m.joints[j].point_p] = std::max(point_pressure[m.joints[j].point_p], p);
+    point_pressure[m.joints[j].point_q] = std::max(point_pressure[m.joints[j].point_q], p);
+  }
+  system.set_fluid_pressure(std::move(point_pressure), std::move(wetted));
+  model.mesh_seconds_ms = static_cast<int>(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  return model;
+}
+
+}  // namespace hfdda::simulation

@@ -1,0 +1,34 @@
+#pragma once
+// From a validated case file to a ready-to-run model: mesh, materials per block,
+// joint properties along the case's fractures, loads and constraints. Checks that
+// need the mesh (empty material region, fracture off the mesh edges, degenerate or
+// inverted blocks) are made here and reported as InputError naming the case file,
+// line and key, before anything is written.
+
+#include <memory>
+#include <vector>
+
+#include "dda/block_system.hpp"
+#include "io/case_config.hpp"
+#include "mesh/mesh.hpp"
+
+namespace hfdda::simulation {
+
+struct Model {
+  io::CaseConfig config;
+  std::unique_ptr<dda::BlockSystem> system;
+  std::vector<int> fracture_of_joint;  ///< index into config.fractures, -1 if none
+  int mesh_seconds_ms = 0;
+};
+
+/// Builds the mesh and the block system of a case. Throws InputError.
+Model build_model(const io::CaseConfig& config);
+
+/// The mesh of a case alone (used by build_model, tests and benchmarks).
+mesh::Mesh build_case_mesh(const io::CaseConfig& config);
+
+/// Mechanics settings of a case: spring constants are factors times the largest
+/// Young's modulus of its materials (seed Table 3.1: k = 100 E).
+dda::MechanicsSettings mechanics_settings(const io::CaseConfig& config);
+
+}  // namespace hfdda::simulation

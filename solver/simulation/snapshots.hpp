@@ -1,0 +1,18 @@
+#pragma once
+// Views of the committed block-system state in the output contract's shapes.
+
+#include <vector>
+
+#include "dda/block_system.hpp"
+#include "io/output.hpp"
+
+namespace hfdda::simulation {
+
+io::BlockFrame block_frame(const dda::BlockSystem& system);
+std::vector<io::JointRow> joint_rows(const dda::BlockSystem& system);
+
+/// Aperture at each geometric point along a set of joints: mean of the face
+/// separations the joints report at that point (>= 0). Returns (point, aperture) pairs.
+std::vector<std::pair<int, double>> apertures_at_points(const dda::BlockSystem& system, const std::vector<int>& joints);
+
+}  // namespace hfdda::simulation
