@@ -527,8 +527,16 @@ int BlockSystem::update_states(const Eigen::VectorXd& d, StepStatistics& stats) 
   }
 
   int applied = 0;
+  last_change_.clear();
   for (const Change& ch : changes) {
     Contact& c = contacts_[ch.contact];
+    if (last_change_.empty()) {
+      const Vec2& at = mesh_.points[c.point];
+      std::ostringstream where;
+      where << (c.joint >= 0 ? "joint " + std::to_string(c.joint) : std::string("vertex-vertex contact")) << " at ("
+            << at.x() << ", " << at.y() << "): " << to_string(c.state) << " -> " << to_string(ch.to);
+      last_change_ = where.str();
+    }
     // Cycle detection: a contact that keeps flipping keeps its state for this step.
     if (++flips_[ch.contact] > kMaxFlipsPerStep && !ch.breaks_bond) continue;
     ++applied;
@@ -598,7 +606,7 @@ StepStatistics BlockSystem::step(double dt_s) {
     }
     std::ostringstream msg;
     msg << "open-close iterations did not converge in " << settings_.max_open_close_iterations
-        << " iterations (contacts still changing state)";
+        << " iterations: contacts still changing state, e.g. " << last_change_;
     throw ConvergenceError(msg.str());
   } catch (...) {
     contacts_ = contacts_at_start;

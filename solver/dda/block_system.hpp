@@ -170,6 +170,7 @@ class BlockSystem {
   std::vector<Contact> contacts_;
   std::vector<int> contacts_at_point_offset_, contacts_at_point_;
   int total_vv_activations_ = 0;
+  std::string last_change_;      // first state change of the last open-close check
   double gap_round_off_m_ = 0.0;  // gaps below this are round-off of the coordinates
   std::vector<int> flips_;
   std::vector<std::pair<int, int>> couplings_;  // block pairs in K's pattern
