@@ -97,6 +97,14 @@ bool edge_on_side(const mesh::Mesh& m, const mesh::BoundaryEdge& e, const Rect& 
   return std::abs(p.y() - outer.ymax) < tol && std::abs(q.y() - outer.ymax) < tol;  // top
 }
 
+/// Outer and optional inner rectangle: shared by both mesh specifications.
+template <class Spec>
+void set_domain(Spec& spec, const io::CaseConfig& c) {
+  spec.outer = c.domain.outer;
+  spec.has_inner = c.domain.inner.has_value();
+  if (spec.has_inner) spec.inner = *c.domain.inner;
+}
+
 }  // namespace
 
 mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
@@ -105,18 +113,14 @@ mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
   try {
     if (c.mesh.kind == io::MeshKind::structured) {
       mesh::StructuredMeshSpec spec;
-      spec.outer = c.domain.outer;
-      spec.has_inner = c.domain.inner.has_value();
-      if (spec.has_inner) spec.inner = *c.domain.inner;
+      set_domain(spec, c);
       spec.cell_size_m = c.mesh.cell_size_m;
       spec.outer_growth = c.mesh.outer_growth;
       spec.split = c.mesh.split;
       m = mesh::build_structured_mesh(spec);
     } else {
       mesh::DelaunayMeshSpec spec;
-      spec.outer = c.domain.outer;
-      spec.has_inner = c.domain.inner.has_value();
-      if (spec.has_inner) spec.inner = *c.domain.inner;
+      set_domain(spec, c);
       spec.max_area_inner_m2 = c.mesh.max_area_inner_m2;
       spec.max_area_outer_m2 = c.mesh.max_area_outer_m2;
       spec.min_angle_deg = c.mesh.min_angle_deg;
