@@ -22,6 +22,7 @@
 
 #include "core/errors.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/format.hpp"
 
 namespace hfdda::mesh {
 namespace {
@@ -38,12 +39,7 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_
 // inputs without small angles (Shewchuk's Triangle works up to about 33 degrees).
 constexpr double kMaxMinAngleDeg = 33.0;
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
+using detail::num;
 
 void require(bool ok, const std::string& rule) {
   if (!ok) throw ModelError("Delaunay mesh: " + rule);

@@ -14,6 +14,7 @@
 
 #include "core/errors.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/format.hpp"
 
 namespace hfdda::mesh {
 namespace {
@@ -22,12 +23,7 @@ namespace {
 constexpr std::int64_t kMaxLinesPerAxis = 1'000'000;
 constexpr std::int64_t kMaxBlocks = 20'000'000;
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
+using detail::num;
 
 void require(bool ok, const std::string& rule) {
   if (!ok) throw ModelError("structured mesh: " + rule);
