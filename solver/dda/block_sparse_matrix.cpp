@@ -103,4 +103,6 @@ void SpdSolver::factorize(const Eigen::SparseMatrix<double>& lower) {
 
 Eigen::VectorXd SpdSolver::solve(const Eigen::VectorXd& rhs) const { return llt_.solve(rhs); }
 
+Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& rhs) const { return llt_.solve(rhs); }
+
 }  // namespace hfdda::dda

@@ -52,6 +52,8 @@ class SpdSolver {
   /// Throws ConvergenceError if K is not positive definite.
   void factorize(const Eigen::SparseMatrix<double>& lower);
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  /// Several right-hand sides at once (one pass through the factor, BLAS-3).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const;
   /// Forget the symbolic analysis (the pattern changed); the next factorize redoes it.
   void reset_pattern() { analysed_ = false; }
   int factorizations() const { return factorizations_; }

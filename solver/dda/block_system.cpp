@@ -250,20 +250,40 @@ void BlockSystem::assemble_block_terms(double dt_s) {
   for (std::size_t j = 0; j < mesh_.joints.size(); ++j) {
     if (!joint_wetted_[j]) continue;
     const auto& joint = mesh_.joints[j];
-    const double pp = point_pressure_[joint.point_p], pq = point_pressure_[joint.point_q];
-    auto add_face = [&](int block, int start_corner, double p_start, double p_end) {
-      const Vec2 u = corner(block, start_corner), v = corner(block, (start_corner + 1) % n_corners(block));
-      const Vec2 n = outward_normal(u, v);
-      const double length = (v - u).norm();
-      for (double s : kGaussPoint) {
-        const double p = (1.0 - s) * p_start + s * p_end;
-        const Mat26 t = displacement_matrix(u + s * (v - u), moments_[block].centroid);
-        load_vector_.segment<6>(6 * block) += 0.5 * length * t.transpose() * (-p * n);
-      }
-    };
-    add_face(joint.block_a, joint.corner_a, pp, pq);  // a runs p -> q
-    add_face(joint.block_b, joint.corner_b, pq, pp);  // b runs q -> p
+    add_joint_pressure_load(static_cast<int>(j), point_pressure_[joint.point_p], point_pressure_[joint.point_q],
+                            load_vector_);
   }
+}
+
+void BlockSystem::add_joint_pressure_load(int j, double pressure_p_Pa, double pressure_q_Pa,
+                                          Eigen::VectorXd& forces) const {
+  const auto& joint = mesh_.joints[j];
+  auto add_face = [&](int block, int start_corner, double p_start, double p_end) {
+    const Vec2 u = corner(block, start_corner), v = corner(block, (start_corner + 1) % n_corners(block));
+    const Vec2 n = outward_normal(u, v);
+    const double length = (v - u).norm();
+    for (double s : kGaussPoint) {
+      const double p = (1.0 - s) * p_start + s * p_end;
+      const Mat26 t = displacement_matrix(u + s * (v - u), moments_[block].centroid);
+      forces.segment<6>(6 * block) += 0.5 * length * t.transpose() * (-p * n);
+    }
+  };
+  add_face(joint.block_a, joint.corner_a, pressure_p_Pa, pressure_q_Pa);  // a runs p -> q
+  add_face(joint.block_b, joint.corner_b, pressure_q_Pa, pressure_p_Pa);  // b runs q -> p
+}
+
+JointEndGap BlockSystem::joint_end_gap(int joint, int end) const {
+  // Spring 0: corner of a against the edge of b; spring 1: corner of b against edge of a.
+  const Contact& c = contacts_[2 * joint + end];
+  const auto& s0 = c.springs[0];
+  const auto& s1 = c.springs[1];
+  JointEndGap g;
+  g.block_a = s0.vertex_block;
+  g.block_b = s0.edge_block;
+  g.row_a = 0.5 * (s0.gap_vertex + s1.gap_edge);
+  g.row_b = 0.5 * (s0.gap_edge + s1.gap_vertex);
+  g.gap0_m = 0.5 * (s0.gap0 + s1.gap0);
+  return g;
 }
 
 // ----------------------------------------------------------------------------------
@@ -353,6 +373,7 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
     }
     const auto start = Clock::now();
     d = solver_.solve(load_vector_);
+    if (coupling_) d = coupling_->solve(*this, solver_, d);
     stats.seconds_solve += seconds_since(start);
     ++stats.alm_iterations;
     if (!settings_.augmented_lagrangian) break;
@@ -420,7 +441,8 @@ bool BlockSystem::may_fail(const Contact& c) const {
   if (c.joint < 0) return true;
   const auto& joint = mesh_.joints[c.joint];
   const int other_point = c.end == 0 ? joint.point_q : joint.point_p;
-  if (!point_pressurised_[c.point] && !point_pressurised_[other_point]) return false;
+  const std::vector<char>& pressurised = coupling_ ? coupling_->pressurised_points() : point_pressurised_;
+  if (!pressurised[c.point] && !pressurised[other_point]) return false;
   const Contact& other_end = contacts_[2 * c.joint + (1 - c.end)];
   if (other_end.state == ContactState::open) return true;
   for (int k = contacts_at_point_offset_[c.point]; k < contacts_at_point_offset_[c.point + 1]; ++k) {
@@ -575,34 +597,50 @@ int BlockSystem::update_states(const Eigen::VectorXd& d, StepStatistics& stats) 
 // ----------------------------------------------------------------------------------
 // The step
 
-StepStatistics BlockSystem::step(double dt_s) {
+StepStatistics BlockSystem::step(double dt_s, StepCoupling* coupling) {
   const auto step_start = Clock::now();
   StepStatistics stats;
   const std::vector<Contact> contacts_at_start = contacts_;
   flips_.assign(contacts_.size(), 0);
+  coupling_ = coupling;
   try {
     auto start = Clock::now();
     update_block_geometry();
     assemble_block_terms(dt_s);
     linearise_contacts();
+    if (coupling_) coupling_->begin_step(*this, dt_s);
     stats.seconds_assembly += seconds_since(start);
+    bool stiffness_changed = true;
     for (int oc = 1; oc <= settings_.max_open_close_iterations; ++oc) {
       stats.open_close_iterations = oc;
-      start = Clock::now();
-      assemble_contacts();
-      stats.seconds_assembly += seconds_since(start);
-      start = Clock::now();
-      solver_.factorize(stiffness_.matrix());
-      stats.seconds_factorization += seconds_since(start);
-      ++stats.factorizations;
+      if (stiffness_changed) {
+        start = Clock::now();
+        assemble_contacts();
+        stats.seconds_assembly += seconds_since(start);
+        start = Clock::now();
+        solver_.factorize(stiffness_.matrix());
+        stats.seconds_factorization += seconds_since(start);
+        ++stats.factorizations;
+      }
+      if (coupling_) {
+        start = Clock::now();
+        coupling_->prepare(*this, solver_, stiffness_changed);
+        stats.seconds_solve += seconds_since(start);
+      }
       const Eigen::VectorXd d = solve_alm(stats);
-      if (update_states(d, stats) == 0) {
+      const int contact_changes = update_states(d, stats);
+      const int coupled_changes = coupling_ ? coupling_->update_states(*this) : 0;
+      stats.coupled_state_changes += coupled_changes;
+      if (contact_changes + coupled_changes == 0) {
         commit(d, dt_s);
+        if (coupling_) coupling_->commit(*this);
+        coupling_ = nullptr;
         for (const auto& c : contacts_) stats.active_vertex_vertex += c.vertex_vertex_active;
         total_vv_activations_ += stats.vertex_vertex_activations;
         stats.seconds_total = seconds_since(step_start);
         return stats;
       }
+      stiffness_changed = contact_changes > 0;
     }
     std::ostringstream msg;
     msg << "open-close iterations did not converge in " << settings_.max_open_close_iterations
@@ -611,6 +649,8 @@ StepStatistics BlockSystem::step(double dt_s) {
   } catch (...) {
     contacts_ = contacts_at_start;
     rebuild_pattern();  // spring slots must point into the current pattern
+    if (coupling_) coupling_->abort();
+    coupling_ = nullptr;
     throw;
   }
 }

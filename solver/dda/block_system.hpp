@@ -51,12 +51,45 @@ struct StepStatistics {
   int open_close_iterations = 0;
   int alm_iterations = 0;        ///< linear solves in the step
   int factorizations = 0;
+  int coupled_state_changes = 0;  ///< e.g. fractures newly wetted by the fluid
   int bonds_broken = 0;
   int state_changes = 0;
   int vertex_vertex_activations = 0;
   int active_vertex_vertex = 0;
   double max_penetration_m = 0.0;
   double seconds_assembly = 0.0, seconds_factorization = 0.0, seconds_solve = 0.0, seconds_total = 0.0;
+};
+
+class BlockSystem;
+
+/// A model coupled with the blocks inside their time step (the fluid network, seed
+/// 2.4). The block system calls it at fixed points of the step:
+///   begin -> { [K factorised] prepare -> (solve per ALM iteration) -> update_states }
+///   -> commit, or abort if the step fails.
+/// solve() receives the displacement for the mechanical loads alone and returns the
+/// coupled one (its own loads added through the factorised K).
+class StepCoupling {
+ public:
+  virtual ~StepCoupling() = default;
+  virtual void begin_step(const BlockSystem& system, double dt_s) = 0;
+  /// K or the coupled model's own set changed since the last call (factorised K given).
+  virtual void prepare(const BlockSystem& system, const SpdSolver& solver, bool stiffness_changed) = 0;
+  virtual Eigen::VectorXd solve(const BlockSystem& system, const SpdSolver& solver,
+                                const Eigen::VectorXd& mechanical_displacement) = 0;
+  /// After the contact-state update: changes of the coupled model's own states.
+  virtual int update_states(const BlockSystem& system) = 0;
+  /// Points where the coupled fluid is pressurised now (propagation rule 2.3 i).
+  virtual const std::vector<char>& pressurised_points() const = 0;
+  virtual void commit(const BlockSystem& system) = 0;
+  virtual void abort() = 0;
+};
+
+/// Linearised normal separation of a joint's faces at one end, the mean of the
+/// symmetric spring pair: gap(D) = gap0 + row_a . D_a + row_b . D_b  [m].
+struct JointEndGap {
+  int block_a = -1, block_b = -1;
+  Row6 row_a = Row6::Zero(), row_b = Row6::Zero();
+  double gap0_m = 0.0;
 };
 
 class BlockSystem {
@@ -76,8 +109,15 @@ class BlockSystem {
   void set_fluid_pressure(std::vector<double> point_pressure_Pa, std::vector<char> joint_wetted);
 
   // --- time stepping --------------------------------------------------------------
-  /// Solves one step of length dt; throws ConvergenceError (nothing committed).
-  StepStatistics step(double dt_s);
+  /// Solves one step of length dt, with an optional coupled model; throws
+  /// ConvergenceError (nothing committed, the coupled model aborted).
+  StepStatistics step(double dt_s, StepCoupling* coupling = nullptr);
+
+  // --- for coupled models, valid during a step ---------------------------------------
+  /// Adds the block forces of a pressure varying linearly from pressure_p (at the
+  /// joint's point p) to pressure_q, acting on both faces of the joint.
+  void add_joint_pressure_load(int joint, double pressure_p_Pa, double pressure_q_Pa, Eigen::VectorXd& forces) const;
+  JointEndGap joint_end_gap(int joint, int end) const;
 
   // --- state queries --------------------------------------------------------------
   const mesh::Mesh& mesh() const { return mesh_; }
@@ -165,6 +205,7 @@ class BlockSystem {
   Vec2 body_force_{0, 0};
   std::vector<double> point_pressure_;
   std::vector<char> joint_wetted_, point_pressurised_;
+  StepCoupling* coupling_ = nullptr;  // during a coupled step
 
   // Contacts: 2 per joint (ends p, q) first, then vertex-vertex candidates.
   std::vector<Contact> contacts_;

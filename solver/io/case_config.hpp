@@ -65,7 +65,38 @@ struct FractureConfig {
   std::optional<double> cohesion_Pa;
   std::optional<double> friction_angle_deg;
   std::optional<double> pressure_Pa;  ///< prescribed fluid pressure on its joints
+  /// Initially open joints that start filled with fluid (at zero pressure) and join the
+  /// flow network from t = 0 (seed 3.2: the joints at the injection point).
+  bool fluid_filled = false;
+  double initial_width_m = 0.0;       ///< initial aperture of fluid-filled joints (0: the minimum width)
   int line = 0;                       ///< case-file line, for error messages
+};
+
+/// Fracturing fluid (seed 2.1, Table 3.1). Present in a case file means the flow
+/// network is solved, coupled with the blocks.
+struct FluidConfig {
+  double density_kg_m3 = 1000.0;        ///< reference density rho0 (eq. 2.6)
+  double bulk_modulus_Pa = 2.2e9;       ///< Kf; compressibility c_f = 1 / Kf
+  double viscosity_Pa_s = 1.0e-3;       ///< mu (cubic law, eq. 2.2)
+  double reference_pressure_Pa = 0.0;   ///< p0 of eq. 2.6
+  /// Carter coefficient C_L of each wall [m/s^0.5]; both walls leak (NOTES erratum 4).
+  double leak_off_coefficient_m_sqrt_s = 0.0;
+};
+
+/// A fluid source at the mesh point nearest `at` (seed 3.2: Q0 at the origin).
+struct InjectionConfig {
+  std::string name = "injection";
+  Vec2 at{0, 0};
+  double mass_rate_kg_s = 0.0;          ///< per metre of out-of-plane thickness
+  double start_time_s = 0.0;
+  int line = 0;
+};
+
+/// A named gauge: pressure and aperture at the mesh point nearest `at`, every step.
+struct ProbeConfig {
+  std::string name;
+  Vec2 at{0, 0};
+  int line = 0;
 };
 
 /// Far-field stress (tension positive) applied as tractions t = sigma . n on the
@@ -105,6 +136,13 @@ struct NumericsConfig {
   int max_open_close_iterations = 200;
   double tie_tolerance = 1.0e-3;        ///< seed 2.3 (iii): failures within 0.1 % split
   bool shear_failure_of_intact_joints = false;  ///< false: seed 2.3 (ii), tension first
+  // Coupled hydro-mechanical step (seed 2.1, 2.4; NOTES section 4).
+  double min_width_main_m = 0.5e-6;     ///< minimum aperture once wetted, network interior
+  double min_width_tip_m = 0.1e-6;      ///< minimum aperture at fracture tips
+  double max_closing_fraction = 0.05;   ///< an aperture may close by at most this per step
+  double coupling_tolerance = 1.0e-9;   ///< relative pressure change and mass residual (erratum 2)
+  int max_coupling_iterations = 60;     ///< Newton iterations on the pressures per solve
+  int max_step_cuts = 4;                ///< a failed step is retried with dt halved this often
 };
 
 struct TimeConfig {
@@ -131,6 +169,9 @@ struct CaseConfig {
   Vec2 body_force_N_m3{0, 0};
   std::vector<FixedPointConfig> fixed_points;
   ContactConfig contact;
+  std::optional<FluidConfig> fluid;     ///< absent: no flow network (prescribed pressures only)
+  std::vector<InjectionConfig> injections;
+  std::vector<ProbeConfig> probes;
   NumericsConfig numerics;
   TimeConfig time;
   OutputConfig output;

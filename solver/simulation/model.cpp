@@ -105,6 +105,55 @@ void set_domain(Spec& spec, const io::CaseConfig& c) {
   if (spec.has_inner) spec.inner = *c.domain.inner;
 }
 
+/// The fluid network over the joints, its initially filled fractures, injection points
+/// and probes (seed 2.1, 3.2).
+void build_flow_network(Model& model, const io::CaseConfig& c) {
+  const mesh::Mesh& m = model.system->mesh();
+  std::vector<fluid::Fracture> fractures;
+  fractures.reserve(m.joints.size());
+  for (const auto& j : m.joints) fractures.push_back({j.point_p, j.point_q, (m.points[j.point_q] - m.points[j.point_p]).norm()});
+  fluid::FluidProperties props;
+  props.density_kg_m3 = c.fluid->density_kg_m3;
+  props.bulk_modulus_Pa = c.fluid->bulk_modulus_Pa;
+  props.viscosity_Pa_s = c.fluid->viscosity_Pa_s;
+  props.reference_pressure_Pa = c.fluid->reference_pressure_Pa;
+  props.leak_off_coefficient_m_sqrt_s = c.fluid->leak_off_coefficient_m_sqrt_s;
+  fluid::FlowSettings settings;
+  settings.min_width_main_m = c.numerics.min_width_main_m;
+  settings.min_width_tip_m = c.numerics.min_width_tip_m;
+  settings.max_closing_fraction = c.numerics.max_closing_fraction;
+  settings.tolerance = c.numerics.coupling_tolerance;
+  settings.max_newton_iterations = c.numerics.max_coupling_iterations;
+  model.flow = std::make_unique<fluid::FlowNetwork>(static_cast<int>(m.points.size()), std::move(fractures), props,
+                                                    settings);
+
+  std::vector<char> filled_point(m.points.size(), 0);
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    const int f = model.fracture_of_joint[j];
+    if (f < 0 || !c.fractures[f].fluid_filled) continue;
+    model.flow->fill_initially(static_cast<int>(j), c.fractures[f].initial_width_m);
+    filled_point[m.joints[j].point_p] = filled_point[m.joints[j].point_q] = 1;
+  }
+  const double tol = 1e-6 * domain_size(c);
+  for (std::size_t i = 0; i < c.injections.size(); ++i) {
+    const auto& inj = c.injections[i];
+    const std::string key = "injections[" + std::to_string(i) + "].at";
+    const int point = mesh::nearest_point(m, inj.at);
+    if ((m.points[point] - inj.at).norm() > tol)
+      throw InputError(c.file, inj.line, key,
+                       "injection point " + format_point(inj.at) + " is not a mesh point (nearest " +
+                           format_point(m.points[point]) + "); put it on the end of a fracture joint");
+    if (!filled_point[point])
+      throw InputError(c.file, inj.line, key,
+                       "injection point " + format_point(inj.at) +
+                           " must lie on a fracture with `fluid_filled: true` (the fluid needs somewhere to go)");
+    model.flow->add_injection({point, inj.mass_rate_kg_s, inj.start_time_s});
+    model.injection_points.push_back(point);
+  }
+  for (const auto& probe : c.probes) model.probe_points.push_back(mesh::nearest_point(m, probe.at));
+  model.coupling = std::make_unique<coupling::HydroMechanicalCoupling>(*model.flow);
+}
+
 }  // namespace
 
 mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
@@ -189,6 +238,7 @@ Model build_model(const io::CaseConfig& c) {
     point_pressure[m.joints[j].point_q] = std::max(point_pressure[m.joints[j].point_q], p);
   }
   system.set_fluid_pressure(std::move(point_pressure), std::move(wetted));
+  if (c.fluid) build_flow_network(model, c);
   model.mesh_seconds_ms = static_cast<int>(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   return model;

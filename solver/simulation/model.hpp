@@ -8,7 +8,9 @@
 #include <memory>
 #include <vector>
 
+#include "coupling/hydro_mechanical_coupling.hpp"
 #include "dda/block_system.hpp"
+#include "fluid/flow_network.hpp"
 #include "io/case_config.hpp"
 #include "mesh/mesh.hpp"
 
@@ -19,6 +21,11 @@ struct Model {
   std::unique_ptr<dda::BlockSystem> system;
   std::vector<int> fracture_of_joint;  ///< index into config.fractures, -1 if none
   int mesh_seconds_ms = 0;
+  // Flow network, when the case has a `fluid` section (fractures = mesh joints).
+  std::unique_ptr<fluid::FlowNetwork> flow;
+  std::unique_ptr<coupling::HydroMechanicalCoupling> coupling;
+  std::vector<int> injection_points;  ///< mesh point of each config.injections item
+  std::vector<int> probe_points;      ///< mesh point of each config.probes item
 };
 
 /// Builds the mesh and the block system of a case. Throws InputError.

@@ -31,8 +31,9 @@ struct OutputSeries {
   OutputSeries(const std::string& d, bool write_vtu)
       : dir(d), vtu(write_vtu), blocks_pvd(d + "/blocks.pvd"), joints_pvd(d + "/joints.pvd") {}
 
-  void write(const dda::BlockSystem& system, int step, double time_s, bool final) {
-    const auto rows = joint_rows(system);
+  void write(const Model& model, int step, double time_s, bool final) {
+    const dda::BlockSystem& system = *model.system;
+    const auto rows = joint_rows(system, model.flow.get());
     io::write_joints_csv(dir + "/joints/joints_" + step_tag(step) + ".csv", rows);
     if (final) io::write_joints_csv(dir + "/joints/joints_final.csv", rows);
     if (!vtu) return;
@@ -45,13 +46,32 @@ struct OutputSeries {
   }
 };
 
-const std::vector<std::string> kHistoryColumns{
-    "step", "time_s", "open_close_iterations", "alm_iterations", "factorizations", "bonds_broken",
-    "state_changes", "vertex_vertex_activations", "active_vertex_vertex", "open_joint_ends",
-    "max_aperture_m", "max_penetration_m", "step_wall_s", "elapsed_wall_s"};
+/// Per-step counters of the fluid coupling, summed over the sub-steps of a cut step.
+struct FlowStepCounters {
+  int fractures_wetted = 0, newton_iterations = 0, step_cuts = 0;
+  double max_relative_residual = 0.0;
+};
 
-std::vector<double> history_row(const dda::BlockSystem& system, int step, double time_s,
-                                 const dda::StepStatistics& st, double elapsed) {
+std::vector<std::string> history_columns(const Model& model) {
+  std::vector<std::string> columns{
+      "step", "time_s", "open_close_iterations", "alm_iterations", "factorizations", "bonds_broken",
+      "state_changes", "vertex_vertex_activations", "active_vertex_vertex", "open_joint_ends",
+      "max_aperture_m", "max_penetration_m", "step_wall_s", "elapsed_wall_s",
+      // Fluid network (zeros without one). Extent: open ends of fluid-filled joints,
+      // relative to the (first) injection point.
+      "step_cuts", "fractures_wetted", "flow_newton_iterations", "flow_max_residual", "wetted_joints",
+      "injection_pressure_Pa", "injection_aperture_m", "open_xmin_m", "open_xmax_m", "open_ymin_m",
+      "open_ymax_m", "mass_injected_kg", "mass_stored_kg", "mass_leaked_kg", "mass_balance_error"};
+  for (const auto& probe : model.config.probes) {
+    columns.push_back("probe_" + probe.name + "_pressure_Pa");
+    columns.push_back("probe_" + probe.name + "_aperture_m");
+  }
+  return columns;
+}
+
+std::vector<double> history_row(const Model& model, int step, double time_s, const dda::StepStatistics& st,
+                                const FlowStepCounters& flow_counters, double elapsed) {
+  const dda::BlockSystem& system = *model.system;
   int open_ends = 0;
   double max_aperture = 0.0;
   for (std::size_t j = 0; j < system.mesh().joints.size(); ++j)
@@ -59,10 +79,77 @@ std::vector<double> history_row(const dda::BlockSystem& system, int step, double
       open_ends += system.contacts()[2 * j + end].state == dda::ContactState::open;
       max_aperture = std::max(max_aperture, system.joint_gap(static_cast<int>(j), end));
     }
-  return {double(step), time_s, double(st.open_close_iterations), double(st.alm_iterations),
-          double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
-          double(st.vertex_vertex_activations), double(st.active_vertex_vertex), double(open_ends),
-          max_aperture, st.max_penetration_m, st.seconds_total, elapsed};
+  std::vector<double> row{double(step), time_s, double(st.open_close_iterations), double(st.alm_iterations),
+                          double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
+                          double(st.vertex_vertex_activations), double(st.active_vertex_vertex), double(open_ends),
+                          max_aperture, st.max_penetration_m, st.seconds_total, elapsed,
+                          double(flow_counters.step_cuts), double(flow_counters.fractures_wetted),
+                          double(flow_counters.newton_iterations), flow_counters.max_relative_residual};
+  const fluid::FlowNetwork* flow = model.flow.get();
+  if (!flow) {
+    row.resize(row.size() + 11, 0.0);
+  } else {
+    const auto& m = system.mesh();
+    const int inlet = model.injection_points.empty() ? -1 : model.injection_points.front();
+    const Vec2 origin = inlet >= 0 ? m.points[inlet] : Vec2(0, 0);
+    int wetted = 0;
+    double xmin = 0, xmax = 0, ymin = 0, ymax = 0;
+    for (int j = 0; j < flow->n_fractures(); ++j) {
+      if (!flow->wetted(j)) continue;
+      ++wetted;
+      for (int end = 0; end < 2; ++end) {
+        if (system.contacts()[2 * j + end].state != dda::ContactState::open) continue;
+        const Vec2 r = m.points[end == 0 ? m.joints[j].point_p : m.joints[j].point_q] - origin;
+        xmin = std::min(xmin, r.x()), xmax = std::max(xmax, r.x());
+        ymin = std::min(ymin, r.y()), ymax = std::max(ymax, r.y());
+      }
+    }
+    row.insert(row.end(), {double(wetted), inlet >= 0 ? flow->pressure(inlet) : 0.0,
+                           inlet >= 0 ? flow->aperture_at_point(inlet) : 0.0, xmin, xmax, ymin, ymax,
+                           flow->injected_mass(), flow->stored_mass(), flow->leaked_mass(),
+                           flow->mass_balance_error()});
+  }
+  for (std::size_t i = 0; i < model.config.probes.size(); ++i) {
+    const int point = model.probe_points[i];
+    row.push_back(flow ? flow->pressure(point) : 0.0);
+    row.push_back(flow ? flow->aperture_at_point(point) : 0.0);
+  }
+  return row;
+}
+
+void add_statistics(dda::StepStatistics& total, const dda::StepStatistics& s) {
+  total.open_close_iterations += s.open_close_iterations;
+  total.alm_iterations += s.alm_iterations;
+  total.factorizations += s.factorizations;
+  total.coupled_state_changes += s.coupled_state_changes;
+  total.bonds_broken += s.bonds_broken;
+  total.state_changes += s.state_changes;
+  total.vertex_vertex_activations += s.vertex_vertex_activations;
+  total.active_vertex_vertex = s.active_vertex_vertex;
+  total.max_penetration_m = std::max(total.max_penetration_m, s.max_penetration_m);
+  total.seconds_assembly += s.seconds_assembly;
+  total.seconds_factorization += s.seconds_factorization;
+  total.seconds_solve += s.seconds_solve;
+  total.seconds_total += s.seconds_total;
+}
+
+/// One step of length dt; a step that does not converge is cut in two halves, up to
+/// `cuts_left` times deep (the coupled step's retry). Rethrows the last failure.
+void advance(Model& model, double dt_s, int cuts_left, dda::StepStatistics& stats, FlowStepCounters& counters) {
+  try {
+    add_statistics(stats, model.system->step(dt_s, model.coupling.get()));
+    if (model.coupling) {
+      const auto& cs = model.coupling->statistics();
+      counters.fractures_wetted += cs.fractures_wetted;
+      counters.newton_iterations += cs.newton_iterations;
+      counters.max_relative_residual = std::max(counters.max_relative_residual, cs.max_relative_residual);
+    }
+  } catch (const ConvergenceError& e) {
+    if (cuts_left <= 0) throw;
+    ++counters.step_cuts;
+    advance(model, 0.5 * dt_s, cuts_left - 1, stats, counters);
+    advance(model, 0.5 * dt_s, cuts_left - 1, stats, counters);
+  }
 }
 
 void write_summary(const Model& model, const RunOptions& options, const RunResult& r) {
@@ -99,21 +186,21 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
 
 RunResult run(Model& model, const RunOptions& options) {
   const auto start = Clock::now();
-  dda::BlockSystem& system = *model.system;
   const auto& time = model.config.time;
   std::filesystem::create_directories(options.output_dir);
-  io::HistoryCsv history(options.output_dir + "/history.csv", kHistoryColumns);
+  io::HistoryCsv history(options.output_dir + "/history.csv", history_columns(model));
   OutputSeries outputs(options.output_dir, options.write_vtu && model.config.output.vtu);
   const bool terminal = !options.quiet && isatty(fileno(stderr));
 
   RunResult result;
   const int n_steps = std::max(1, static_cast<int>(std::llround(time.end_time_s / time.dt_s)));
-  outputs.write(system, 0, 0.0, false);
+  outputs.write(model, 0, 0.0, false);
   for (int step = 1; step <= n_steps; ++step) {
     const double t = step * time.dt_s;
     dda::StepStatistics st;
+    FlowStepCounters flow_counters;
     try {
-      st = system.step(time.dt_s);
+      advance(model, time.dt_s, model.config.numerics.max_step_cuts, st, flow_counters);
     } catch (const ConvergenceError& e) {
       char where[96];
       std::snprintf(where, sizeof where, "step %d (t = %g s to %g s): ", step, t - time.dt_s, t);
@@ -133,9 +220,9 @@ RunResult run(Model& model, const RunOptions& options) {
     tot.seconds_solve += st.seconds_solve;
     result.time_s = t;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    history.append(history_row(system, step, t, st, elapsed));
+    history.append(history_row(model, step, t, st, flow_counters, elapsed));
     const int every = model.config.output.every_steps;
-    if (step == n_steps || (every > 0 && step % every == 0)) outputs.write(system, step, t, step == n_steps);
+    if (step == n_steps || (every > 0 && step % every == 0)) outputs.write(model, step, t, step == n_steps);
     if (terminal)
       std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  open-close %d  ALM %d  elapsed %.1f s   ", step, n_steps, t,
                    st.open_close_iterations, st.alm_iterations, elapsed);
@@ -145,7 +232,7 @@ RunResult run(Model& model, const RunOptions& options) {
   }
   if (terminal) std::fprintf(stderr, "\n");
   result.completed = result.message.empty();
-  if (!result.completed) outputs.write(system, result.totals.steps, result.time_s, true);
+  if (!result.completed) outputs.write(model, result.totals.steps, result.time_s, true);
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   write_summary(model, options, result);
   return result;

@@ -19,7 +19,7 @@ io::BlockFrame block_frame(const dda::BlockSystem& s) {
   return f;
 }
 
-std::vector<io::JointRow> joint_rows(const dda::BlockSystem& s) {
+std::vector<io::JointRow> joint_rows(const dda::BlockSystem& s, const fluid::FlowNetwork* flow) {
   const auto& m = s.mesh();
   std::vector<io::JointRow> rows(m.joints.size());
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
@@ -46,7 +46,7 @@ std::vector<io::JointRow> joint_rows(const dda::BlockSystem& s) {
     r.state_q = dda::to_string(contact_q.state);
     r.broken = !contact_p.bonded || !contact_q.bonded;
     r.natural = joint.properties.natural;
-    r.fluid = s.joint_wetted(static_cast<int>(j));
+    r.fluid = flow ? flow->wetted(static_cast<int>(j)) : s.joint_wetted(static_cast<int>(j));
   }
   return rows;
 }

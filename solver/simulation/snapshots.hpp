@@ -4,12 +4,14 @@
 #include <vector>
 
 #include "dda/block_system.hpp"
+#include "fluid/flow_network.hpp"
 #include "io/output.hpp"
 
 namespace hfdda::simulation {
 
 io::BlockFrame block_frame(const dda::BlockSystem& system);
-std::vector<io::JointRow> joint_rows(const dda::BlockSystem& system);
+/// One row per joint; with a flow network, "fluid" marks the joints it has wetted.
+std::vector<io::JointRow> joint_rows(const dda::BlockSystem& system, const fluid::FlowNetwork* flow = nullptr);
 
 /// Aperture at each geometric point along a set of joints: mean of the face
 /// separations the joints report at that point (>= 0). Returns (point, aperture) pairs.

@@ -1,0 +1,138 @@
+#include "coupling/hydro_mechanical_coupling.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace hfdda::coupling {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+/// Right-hand sides per multi-column solve: bounds the dense block to 6 nb x 64.
+constexpr int kColumnsPerSolve = 64;
+}  // namespace
+
+HydroMechanicalCoupling::HydroMechanicalCoupling(fluid::FlowNetwork& network)
+    : network_(network), pressurised_(network.n_points(), 0) {}
+
+void HydroMechanicalCoupling::refresh_pressurised() {
+  std::fill(pressurised_.begin(), pressurised_.end(), 0);
+  for (int point : network_.trial_nodes()) pressurised_[point] = network_.trial_pressurised(point);
+}
+
+void HydroMechanicalCoupling::begin_step(const dda::BlockSystem& system, double dt_s) {
+  if (system.mesh().joints.size() != static_cast<std::size_t>(network_.n_fractures()))
+    throw std::invalid_argument("HydroMechanicalCoupling: the network's fractures must be the mesh joints");
+  stats_ = {};
+  network_.begin_step(dt_s);
+  topology_changed_ = true;
+  refresh_pressurised();
+}
+
+void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, const dda::SpdSolver& solver,
+                                      bool stiffness_changed) {
+  if (!stiffness_changed && !topology_changed_) return;
+  const auto start = Clock::now();
+  const auto& fractures = network_.trial_fractures();
+  const auto& nodes = network_.trial_nodes();
+  const int nf = static_cast<int>(fractures.size());
+  const int n = static_cast<int>(nodes.size());
+  const int nb = system.n_blocks();
+  stats_.max_nodes = std::max(stats_.max_nodes, n);
+
+  gaps_.resize(2 * nf);
+  for (int k = 0; k < nf; ++k)
+    for (int end = 0; end < 2; ++end) gaps_[2 * k + end] = system.joint_end_gap(fractures[k], end);
+
+  // B: block forces per unit nodal pressure, from the trapezoidal face loads.
+  work_.setZero(6 * nb);
+  loads_.assign(n, {});
+  for (int k = 0; k < nf; ++k) {
+    const int j = fractures[k];
+    const auto& joint = system.mesh().joints[j];
+    const int blocks[2] = {joint.block_a, joint.block_b};
+    for (int end = 0; end < 2; ++end) {
+      const int node = network_.node_index(end == 0 ? joint.point_p : joint.point_q);
+      system.add_joint_pressure_load(j, end == 0 ? 1.0 : 0.0, end == 0 ? 0.0 : 1.0, work_);
+      for (int b : blocks) {
+        loads_[node].push_back({b, work_.segment<6>(6 * b)});
+        work_.segment<6>(6 * b).setZero();
+      }
+    }
+  }
+
+  // S = J K^-1 B, a few dozen columns per solve.
+  sensitivity_.setZero(2 * nf, n);
+  Eigen::MatrixXd rhs;
+  for (int first = 0; first < n; first += kColumnsPerSolve) {
+    const int cols = std::min(kColumnsPerSolve, n - first);
+    rhs.setZero(6 * nb, cols);
+    for (int c = 0; c < cols; ++c)
+      for (const NodeLoad& l : loads_[first + c]) rhs.block<6, 1>(6 * l.block, c) += l.force;
+    const Eigen::MatrixXd x = solver.solve(rhs);
+    for (int e = 0; e < 2 * nf; ++e) {
+      const auto& g = gaps_[e];
+      sensitivity_.row(e).segment(first, cols) =
+          g.row_a * x.middleRows<6>(6 * g.block_a) + g.row_b * x.middleRows<6>(6 * g.block_b);
+    }
+  }
+  topology_changed_ = false;
+  stats_.seconds_sensitivity += seconds_since(start);
+}
+
+Eigen::VectorXd HydroMechanicalCoupling::solve(const dda::BlockSystem& system, const dda::SpdSolver& solver,
+                                               const Eigen::VectorXd& d_mechanical) {
+  const auto start = Clock::now();
+  const int n_ends = static_cast<int>(gaps_.size());
+  Eigen::VectorXd base(n_ends);
+  for (int e = 0; e < n_ends; ++e) {
+    const auto& g = gaps_[e];
+    base[e] = g.gap0_m + g.row_a.dot(d_mechanical.segment<6>(6 * g.block_a)) +
+              g.row_b.dot(d_mechanical.segment<6>(6 * g.block_b));
+  }
+  const fluid::FlowSolveStatistics fs = network_.solve(base, sensitivity_);
+  ++stats_.flow_solves;
+  stats_.newton_iterations += fs.newton_iterations;
+  stats_.active_set_rounds += fs.active_set_rounds;
+  stats_.max_relative_residual = std::max(stats_.max_relative_residual, fs.max_relative_residual);
+  refresh_pressurised();
+
+  const Eigen::VectorXd& p = network_.trial_pressure();
+  work_.setZero(6 * system.n_blocks());
+  for (int i = 0; i < p.size(); ++i)
+    for (const NodeLoad& l : loads_[i]) work_.segment<6>(6 * l.block) += p[i] * l.force;
+  Eigen::VectorXd d = d_mechanical + solver.solve(work_);
+  stats_.seconds_flow += seconds_since(start);
+  return d;
+}
+
+int HydroMechanicalCoupling::update_states(const dda::BlockSystem& system) {
+  // Figure 2.8: a joint whose contact is open at a pressurised node takes in fluid.
+  int changes = 0;
+  const auto& joints = system.mesh().joints;
+  for (int j = 0; j < static_cast<int>(joints.size()); ++j) {
+    for (int end = 0; end < 2; ++end) {
+      if (system.contacts()[2 * j + end].state != dda::ContactState::open) continue;
+      const int point = end == 0 ? joints[j].point_p : joints[j].point_q;
+      if (!pressurised_[point]) continue;
+      if (network_.wet(j)) ++changes;
+      break;
+    }
+  }
+  if (changes > 0) {
+    topology_changed_ = true;
+    stats_.fractures_wetted += changes;
+  }
+  return changes;
+}
+
+void HydroMechanicalCoupling::commit(const dda::BlockSystem&) {
+  network_.commit();
+  refresh_pressurised();
+}
+
+void HydroMechanicalCoupling::abort() { topology_changed_ = true; }
+
+}  // namespace hfdda::coupling

@@ -1,0 +1,71 @@
+#pragma once
+// The fully implicit hydro-mechanical step (seed 2.4, Figures 2.7-2.8), without the
+// seed's stabilisation constants (NOTES section 4).
+//
+// Within one open-close iteration the contact springs are fixed, so the blocks are
+// linear: D = K^-1 (F_mech + B p), with B the trapezoidal pressure loads of the
+// wetted joints per unit nodal pressure. The apertures of the wetted joint ends are
+// then affine in the nodal pressures,
+//     w(p) = g0 + J K^-1 F_mech + (J K^-1 B) p,
+// where J holds the linearised gaps. The coupling computes S = J K^-1 B once per
+// factorisation of K (one multi-right-hand-side solve) and hands w(p) to the flow
+// network, whose Newton iteration solves the coupled mass balance exactly; the block
+// displacement follows with one more solve. Outer iterations (the block system's
+// open-close loop) add the joints the fluid reaches: a joint joins the network once
+// one of its end contacts is open at a pressurised node (Figure 2.8).
+
+#include <vector>
+
+#include "dda/block_system.hpp"
+#include "fluid/flow_network.hpp"
+
+namespace hfdda::coupling {
+
+struct CouplingStatistics {
+  int flow_solves = 0;            ///< one per ALM iteration
+  int newton_iterations = 0;
+  int active_set_rounds = 0;
+  int fractures_wetted = 0;
+  int max_nodes = 0;
+  double max_relative_residual = 0.0;
+  double seconds_sensitivity = 0.0;  ///< building S = J K^-1 B
+  double seconds_flow = 0.0;
+};
+
+/// Couples a FlowNetwork whose fractures are the mesh joints (same indices) with the
+/// block system it is passed to.
+class HydroMechanicalCoupling final : public dda::StepCoupling {
+ public:
+  explicit HydroMechanicalCoupling(fluid::FlowNetwork& network);
+
+  void begin_step(const dda::BlockSystem& system, double dt_s) override;
+  void prepare(const dda::BlockSystem& system, const dda::SpdSolver& solver, bool stiffness_changed) override;
+  Eigen::VectorXd solve(const dda::BlockSystem& system, const dda::SpdSolver& solver,
+                        const Eigen::VectorXd& mechanical_displacement) override;
+  int update_states(const dda::BlockSystem& system) override;
+  const std::vector<char>& pressurised_points() const override { return pressurised_; }
+  void commit(const dda::BlockSystem& system) override;
+  void abort() override;
+
+  /// Statistics of the last step attempt (committed or not).
+  const CouplingStatistics& statistics() const { return stats_; }
+  const fluid::FlowNetwork& network() const { return network_; }
+
+ private:
+  struct NodeLoad {  // block forces of a unit pressure at one node
+    int block;
+    dda::Vec6 force;
+  };
+  void refresh_pressurised();
+
+  fluid::FlowNetwork& network_;
+  bool topology_changed_ = true;
+  std::vector<dda::JointEndGap> gaps_;           // per trial fracture end
+  std::vector<std::vector<NodeLoad>> loads_;     // per trial node
+  Eigen::MatrixXd sensitivity_;                  // S = J K^-1 B [m/Pa]
+  Eigen::VectorXd work_;
+  std::vector<char> pressurised_;
+  CouplingStatistics stats_;
+};
+
+}  // namespace hfdda::coupling

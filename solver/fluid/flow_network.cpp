@@ -1,0 +1,370 @@
+#include "fluid/flow_network.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/errors.hpp"
+
+namespace hfdda::fluid {
+
+struct FlowNetwork::Evaluation {
+  Eigen::VectorXd pressure, density, aperture, volume, residual, eta;
+  std::vector<char> active;  // per end: the aperture follows the mechanics (not a floor)
+  Eigen::MatrixXd jacobian;
+};
+
+FlowNetwork::FlowNetwork(int n_points, std::vector<Fracture> fractures, FluidProperties fluid, FlowSettings settings)
+    : fractures_(std::move(fractures)), fluid_(fluid), settings_(settings) {
+  for (const auto& f : fractures_)
+    if (f.point_p < 0 || f.point_q < 0 || f.point_p >= n_points || f.point_q >= n_points || !(f.length_m > 0.0))
+      throw std::invalid_argument("FlowNetwork: fracture with invalid points or length");
+  const std::size_t nf = fractures_.size();
+  wetted_.assign(nf, 0);
+  arrival_time_.assign(nf, 0.0);
+  aperture_.assign(2 * nf, 0.0);
+  point_pressure_.assign(n_points, 0.0);
+  point_mass_.assign(n_points, 0.0);
+  point_zero_.assign(n_points, 0);
+  node_of_point_.assign(n_points, -1);
+  guess_pressure_.assign(n_points, 0.0);
+  trial_wetted_ = wetted_;
+}
+
+void FlowNetwork::add_injection(const Injection& injection) {
+  if (injection.point < 0 || injection.point >= n_points())
+    throw std::invalid_argument("FlowNetwork: injection at an invalid point");
+  injections_.push_back(injection);
+}
+
+void FlowNetwork::fill_initially(int f, double width_m) {
+  const double w = std::max(width_m, settings_.min_width_main_m);
+  wetted_[f] = 1;
+  arrival_time_[f] = time_s_;
+  aperture_[2 * f] = aperture_[2 * f + 1] = w;
+  const double mass_per_end = fluid_.density(0.0) * 0.5 * fractures_[f].length_m * w;
+  point_mass_[fractures_[f].point_p] += mass_per_end;
+  point_mass_[fractures_[f].point_q] += mass_per_end;
+  initial_mass_ += 2.0 * mass_per_end;
+  trial_wetted_ = wetted_;
+}
+
+// ----------------------------------------------------------------------------------
+// Trial network of a step
+
+void FlowNetwork::begin_step(double dt_s) {
+  if (!(dt_s > 0.0)) throw std::invalid_argument("FlowNetwork::begin_step: dt must be positive");
+  dt_s_ = dt_s;
+  trial_wetted_ = wetted_;
+  guess_pressure_ = point_pressure_;
+  rebuild_trial_topology();
+}
+
+bool FlowNetwork::wet(int f) {
+  if (trial_wetted_[f]) return false;
+  trial_wetted_[f] = 1;
+  rebuild_trial_topology();
+  return true;
+}
+
+bool FlowNetwork::trial_pressurised(int point) const {
+  const int i = node_of_point_[point];
+  return i >= 0 && !zero_[i] && pressure_.size() > i && pressure_[i] > 0.0;
+}
+
+void FlowNetwork::rebuild_trial_topology() {
+  // Warm start: keep the trial pressures of the current nodes.
+  for (std::size_t i = 0; i < trial_nodes_.size() && static_cast<Eigen::Index>(i) < pressure_.size(); ++i)
+    guess_pressure_[trial_nodes_[i]] = pressure_[i];
+  for (int point : trial_nodes_) node_of_point_[point] = -1;
+  trial_fractures_.clear();
+  trial_nodes_.clear();
+  for (int f = 0; f < n_fractures(); ++f)
+    if (trial_wetted_[f]) trial_fractures_.push_back(f);
+  const int nf = static_cast<int>(trial_fractures_.size());
+  fracture_node_a_.resize(nf);
+  fracture_node_b_.resize(nf);
+  auto node = [&](int point) {
+    if (node_of_point_[point] < 0) {
+      node_of_point_[point] = static_cast<int>(trial_nodes_.size());
+      trial_nodes_.push_back(point);
+    }
+    return node_of_point_[point];
+  };
+  for (int k = 0; k < nf; ++k) {
+    fracture_node_a_[k] = node(fractures_[trial_fractures_[k]].point_p);
+    fracture_node_b_[k] = node(fractures_[trial_fractures_[k]].point_q);
+  }
+  const int n = static_cast<int>(trial_nodes_.size());
+  const double t0 = time_s_, t1 = time_s_ + dt_s_;
+
+  old_mass_.setZero(n);
+  injected_.setZero(n);
+  leak_volume_.setZero(n);
+  zero_.assign(n, 0);
+  std::vector<int> degree(n, 0);
+  for (int i = 0; i < n; ++i) {
+    old_mass_[i] = point_mass_[trial_nodes_[i]];
+    zero_[i] = point_zero_[trial_nodes_[i]];
+  }
+  for (const auto& inj : injections_) {
+    const int i = node_of_point_[inj.point];
+    const double seconds = std::max(0.0, t1 - std::max(t0, inj.start_time_s));
+    if (seconds <= 0.0) continue;
+    if (i < 0) {
+      std::ostringstream msg;
+      msg << "injection at mesh point " << inj.point << " is not on a fluid-filled fracture at t = " << t0
+          << " s: the injected fluid has nowhere to go";
+      throw ModelError(msg.str());
+    }
+    injected_[i] += inj.mass_rate_kg_s * seconds;
+  }
+  leak_length_.setZero(nf);
+  const double cl = fluid_.leak_off_coefficient_m_sqrt_s;
+  for (int k = 0; k < nf; ++k) {
+    const int f = trial_fractures_[k];
+    ++degree[fracture_node_a_[k]];
+    ++degree[fracture_node_b_[k]];
+    if (cl <= 0.0) continue;
+    // Fluid arrives in a newly wetted fracture at the start of the step.
+    const double arrival = wetted_[f] ? arrival_time_[f] : t0;
+    leak_length_[k] = cl * fractures_[f].length_m * 2.0 * (std::sqrt(t1 - arrival) - std::sqrt(std::max(0.0, t0 - arrival)));
+    leak_volume_[fracture_node_a_[k]] += leak_length_[k];
+    leak_volume_[fracture_node_b_[k]] += leak_length_[k];
+  }
+  floor_.setZero(2 * nf);
+  for (int k = 0; k < nf; ++k) {
+    const int f = trial_fractures_[k];
+    for (int end = 0; end < 2; ++end) {
+      const int i = end == 0 ? fracture_node_a_[k] : fracture_node_b_[k];
+      const double minimum = degree[i] >= 2 ? settings_.min_width_main_m : settings_.min_width_tip_m;
+      const double closing = wetted_[f] ? (1.0 - settings_.max_closing_fraction) * aperture_[2 * f + end] : 0.0;
+      floor_[2 * k + end] = std::max(minimum, closing);
+    }
+  }
+  unknowns_.setZero(n);
+  pressure_.setZero(n);
+  for (int i = 0; i < n; ++i) {
+    if (zero_[i]) {
+      unknowns_[i] = old_mass_[i];
+    } else {
+      unknowns_[i] = guess_pressure_[trial_nodes_[i]];
+      pressure_[i] = unknowns_[i];
+    }
+  }
+  aperture_trial_.setZero(2 * nf);
+  mass_new_.setZero(n);
+  leak_mass_.setZero(n);
+}
+
+// ----------------------------------------------------------------------------------
+// Mass balance and its Jacobian
+
+void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
+                           Evaluation& out, bool with_jacobian) const {
+  const int n = static_cast<int>(trial_nodes_.size());
+  const int nf = static_cast<int>(trial_fractures_.size());
+  out.pressure = x;
+  for (int i = 0; i < n; ++i)
+    if (zero_[i]) out.pressure[i] = 0.0;
+  out.aperture = base + s * out.pressure;
+  out.active.assign(2 * nf, 0);
+  for (int e = 0; e < 2 * nf; ++e) {
+    out.active[e] = out.aperture[e] > floor_[e];
+    if (!out.active[e]) out.aperture[e] = floor_[e];
+  }
+  out.density.resize(n);
+  for (int i = 0; i < n; ++i) out.density[i] = fluid_.density(out.pressure[i]);
+  out.volume.setZero(n);
+  for (int k = 0; k < nf; ++k) {
+    const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
+    out.volume[fracture_node_a_[k]] += half * out.aperture[2 * k];
+    out.volume[fracture_node_b_[k]] += half * out.aperture[2 * k + 1];
+  }
+  out.residual.resize(n);
+  for (int i = 0; i < n; ++i)
+    out.residual[i] = (zero_[i] ? x[i] : out.density[i] * out.volume[i]) - old_mass_[i] +
+                      out.density[i] * leak_volume_[i] - injected_[i];
+  out.eta.resize(nf);
+  const double mu12 = 12.0 * fluid_.viscosity_Pa_s;
+  for (int k = 0; k < nf; ++k) {
+    const int a = fracture_node_a_[k], b = fracture_node_b_[k];
+    const double length = fractures_[trial_fractures_[k]].length_m;
+    const double rho = 0.5 * (out.density[a] + out.density[b]);
+    const double w = 0.5 * (out.aperture[2 * k] + out.aperture[2 * k + 1]);
+    out.eta[k] = rho * w * w * w / (mu12 * length);  // eq. 2.2
+    const double outflow = dt_s_ * out.eta[k] * (out.pressure[a] - out.pressure[b]);
+    out.residual[a] += outflow;
+    out.residual[b] -= outflow;
+  }
+  if (!with_jacobian) return;
+
+  const double drho = fluid_.density_derivative();
+  Eigen::MatrixXd& jac = out.jacobian;
+  jac.setZero(n, n);
+  for (int i = 0; i < n; ++i)
+    if (!zero_[i]) jac(i, i) += drho * (out.volume[i] + leak_volume_[i]);
+  for (int k = 0; k < nf; ++k) {
+    const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
+    for (int end = 0; end < 2; ++end) {
+      const int i = end == 0 ? fracture_node_a_[k] : fracture_node_b_[k];
+      if (out.active[2 * k + end] && !zero_[i]) jac.row(i) += out.density[i] * half * s.row(2 * k + end);
+    }
+  }
+  Eigen::RowVectorXd deta(n);
+  for (int k = 0; k < nf; ++k) {
+    const int a = fracture_node_a_[k], b = fracture_node_b_[k];
+    const double rho = 0.5 * (out.density[a] + out.density[b]);
+    const double w = 0.5 * (out.aperture[2 * k] + out.aperture[2 * k + 1]);
+    deta.setZero();
+    if (out.active[2 * k]) deta += (1.5 * out.eta[k] / w) * s.row(2 * k);
+    if (out.active[2 * k + 1]) deta += (1.5 * out.eta[k] / w) * s.row(2 * k + 1);
+    if (!zero_[a]) deta[a] += 0.5 * drho * out.eta[k] / rho;
+    if (!zero_[b]) deta[b] += 0.5 * drho * out.eta[k] / rho;
+    const double dp = out.pressure[a] - out.pressure[b];
+    const Eigen::RowVectorXd d_outflow = dt_s_ * dp * deta;
+    jac.row(a) += d_outflow;
+    jac.row(b) -= d_outflow;
+    jac(a, a) += dt_s_ * out.eta[k];
+    jac(a, b) -= dt_s_ * out.eta[k];
+    jac(b, b) += dt_s_ * out.eta[k];
+    jac(b, a) -= dt_s_ * out.eta[k];
+  }
+  // Zero-pressure nodes: their unknown is the stored mass, which only their own row sees.
+  for (int i = 0; i < n; ++i)
+    if (zero_[i]) {
+      jac.col(i).setZero();
+      jac(i, i) = 1.0;
+    }
+}
+
+void FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats) {
+  const int n = static_cast<int>(trial_nodes_.size());
+  const double mass_scale = std::max(old_mass_.sum() + injected_.sum(), 1e-300);
+  const double tol = settings_.tolerance;
+  Evaluation ev, trial;
+  Eigen::VectorXd& x = unknowns_;
+  double max_p = 0.0, residual = 0.0, change = 0.0;
+  for (int it = 0; it < settings_.max_newton_iterations; ++it) {
+    evaluate(x, base, s, ev, true);
+    residual = ev.residual.cwiseAbs().maxCoeff() / mass_scale;
+    const Eigen::VectorXd dx = ev.jacobian.partialPivLu().solve(-ev.residual);
+    if (!dx.allFinite()) throw ConvergenceError("fluid flow: singular mass-balance Jacobian");
+    ++stats.newton_iterations;
+    // Backtracking on the largest mass residual: apertures and transmissivities have
+    // kinks at the minimum widths, where full Newton steps may overshoot.
+    double alpha = 1.0;
+    const double merit = ev.residual.norm();
+    for (int cut = 0; cut < 30; ++cut, alpha *= 0.5) {
+      evaluate(x + alpha * dx, base, s, trial, false);
+      if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit || merit <= tol * mass_scale) break;
+    }
+    x += alpha * dx;
+    max_p = 0.0, change = 0.0;
+    for (int i = 0; i < n; ++i)
+      if (!zero_[i]) {
+        max_p = std::max(max_p, std::abs(x[i]));
+        change = std::max(change, std::abs(alpha * dx[i]));
+      }
+    // Relative pressure change and mass residual (NOTES erratum 2); 1 mPa absolute floor.
+    if (residual <= tol && change <= tol * max_p + 1e-3) {
+      stats.max_relative_residual = std::max(stats.max_relative_residual, residual);
+      return;
+    }
+  }
+  std::ostringstream msg;
+  msg << "fluid flow: Newton iterations did not converge in " << settings_.max_newton_iterations
+      << " iterations (mass residual " << residual << " of the stored mass, last pressure change " << change
+      << " Pa against pressures up to " << max_p << " Pa, " << n << " nodes)";
+  throw ConvergenceError(msg.str());
+}
+
+FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, const Eigen::MatrixXd& s) {
+  const int n = static_cast<int>(trial_nodes_.size());
+  const int nf = static_cast<int>(trial_fractures_.size());
+  if (base.size() != 2 * nf || s.rows() != 2 * nf || s.cols() != n)
+    throw std::invalid_argument("FlowNetwork::solve: aperture model does not match the trial network");
+  FlowSolveStatistics stats;
+  if (n == 0) return stats;
+  Evaluation ev;
+  for (int round = 0;; ++round) {
+    if (round == settings_.max_active_set_rounds)
+      throw ConvergenceError("fluid flow: the set of zero-pressure nodes did not settle in " +
+                             std::to_string(round) + " rounds");
+    newton(base, s, stats);
+    ++stats.active_set_rounds;
+    evaluate(unknowns_, base, s, ev, false);
+    int changes = 0;
+    for (int i = 0; i < n; ++i) {
+      const double full_mass = fluid_.density(0.0) * ev.volume[i];
+      if (!zero_[i] && unknowns_[i] < 0.0) {
+        zero_[i] = 1;  // seed 2.1: negative pressure -> zero-pressure node, volume unknown
+        unknowns_[i] = std::min(std::max(old_mass_[i], 0.0), full_mass);
+        ++changes;
+      } else if (zero_[i] && unknowns_[i] > full_mass * (1.0 + 1e-12)) {
+        zero_[i] = 0;  // full again: back to an unknown pressure
+        unknowns_[i] = 0.0;
+        ++changes;
+      }
+    }
+    if (changes == 0) break;
+  }
+  // Mass-conservative update: the stored mass is what flowed in, to round-off.
+  pressure_ = ev.pressure;
+  aperture_trial_ = ev.aperture;
+  for (int i = 0; i < n; ++i) {
+    const double storage = zero_[i] ? unknowns_[i] : ev.density[i] * ev.volume[i];
+    mass_new_[i] = storage - ev.residual[i];
+    leak_mass_[i] = ev.density[i] * leak_volume_[i];
+    stats.zero_pressure_nodes += zero_[i];
+  }
+  return stats;
+}
+
+void FlowNetwork::commit() {
+  const int n = static_cast<int>(trial_nodes_.size());
+  const double t0 = time_s_;
+  for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
+    const int f = trial_fractures_[k];
+    if (!wetted_[f]) arrival_time_[f] = t0;
+    wetted_[f] = 1;
+    aperture_[2 * f] = aperture_trial_[2 * k];
+    aperture_[2 * f + 1] = aperture_trial_[2 * k + 1];
+  }
+  for (int i = 0; i < n; ++i) {
+    const int point = trial_nodes_[i];
+    point_pressure_[point] = pressure_[i];
+    point_mass_[point] = mass_new_[i];
+    point_zero_[point] = zero_[i];
+  }
+  injected_kg_ += injected_.sum();
+  leaked_kg_ += leak_mass_.sum();
+  time_s_ += dt_s_;
+  trial_wetted_ = wetted_;
+}
+
+double FlowNetwork::stored_mass() const {
+  double m = 0.0;
+  for (double v : point_mass_) m += v;
+  return m;
+}
+
+double FlowNetwork::mass_balance_error() const {
+  if (injected_kg_ <= 0.0) return 0.0;
+  // The fluid present at t = 0 counts as injected before the first step.
+  return std::abs(injected_kg_ + initial_mass_ - stored_mass() - leaked_kg_) / (injected_kg_ + initial_mass_);
+}
+
+double FlowNetwork::aperture_at_point(int point) const {
+  double sum = 0.0;
+  int count = 0;
+  for (int f = 0; f < n_fractures(); ++f) {
+    if (!wetted_[f]) continue;
+    if (fractures_[f].point_p == point) sum += aperture_[2 * f], ++count;
+    if (fractures_[f].point_q == point) sum += aperture_[2 * f + 1], ++count;
+  }
+  return count ? sum / count : 0.0;
+}
+
+}  // namespace hfdda::fluid

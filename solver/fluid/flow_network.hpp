@@ -1,0 +1,160 @@
+#pragma once
+// Compressible Poiseuille flow in the network of fluid-filled joints (seed 2.1).
+//
+// Nodes are the mesh's geometric points, fractures are its joints. A fracture joins
+// the network ("wetted") once the mechanics opens it next to a pressurised node, and
+// stays in it for the rest of the run. Per node i, over a step t -> t + dt, fully
+// implicit (eq. 2.5-2.7):
+//
+//   M_i(t+dt) - M_i(t) = I_i - rho_i Vleak_i - dt sum_j eta_ij (p_i - p_j)
+//
+//   M_i   = rho(p_i) V_i, stored mass; V_i = sum_j L_ij/2 w_ij(end at i)       [kg]
+//   rho   = rho0 (1 + (p - p0) / Kf)                                         (eq. 2.6)
+//   eta   = rho_ij w_ij^3 / (12 mu L_ij), rho_ij and w_ij means of the two ends (eq. 2.2)
+//   I_i   = injected mass over the step                                       [kg]
+//   Vleak = Carter leak-off: both walls of each fracture leak C_L / sqrt(t - t0),
+//           half of the fracture charged to each end node, integrated exactly over
+//           the step: C_L L 2 (sqrt(t+dt - t0) - sqrt(t - t0))  (NOTES erratum 4)
+//
+// A node whose pressure would be negative becomes a zero-pressure node: p = 0 and its
+// stored mass is solved for instead (seed 2.1, Figure 2.2); it returns to the
+// pressurised set when that mass exceeds rho(0) V_i.
+//
+// Apertures come from the mechanics as an affine model of the nodal pressures,
+// w_e(p) = base_e + S_e . p (exact for the linear block system once its contacts are
+// fixed), bounded below by the minimum widths (0.5 um inside the network, 0.1 um at
+// tips) and by the closing limit (at most 5 % a step). Newton's method on the nodal
+// unknowns then solves the coupled problem without stabilisation constants.
+//
+// Units SI, per metre of out-of-plane thickness (h = 1 m in eq. 2.2-2.3).
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+namespace hfdda::fluid {
+
+struct FluidProperties {
+  double density_kg_m3 = 1000.0;
+  double bulk_modulus_Pa = 2.2e9;
+  double viscosity_Pa_s = 1.0e-3;
+  double reference_pressure_Pa = 0.0;
+  double leak_off_coefficient_m_sqrt_s = 0.0;  ///< Carter C_L of one wall
+
+  double density(double pressure_Pa) const {
+    return density_kg_m3 * (1.0 + (pressure_Pa - reference_pressure_Pa) / bulk_modulus_Pa);
+  }
+  double density_derivative() const { return density_kg_m3 / bulk_modulus_Pa; }
+};
+
+struct FlowSettings {
+  double min_width_main_m = 0.5e-6;
+  double min_width_tip_m = 0.1e-6;
+  double max_closing_fraction = 0.05;
+  double tolerance = 1.0e-9;        ///< Newton: relative pressure change and mass residual
+  int max_newton_iterations = 60;
+  int max_active_set_rounds = 40;   ///< zero-pressure set updates per solve
+};
+
+struct Fracture {
+  int point_p = -1, point_q = -1;
+  double length_m = 0.0;
+};
+
+struct Injection {
+  int point = -1;
+  double mass_rate_kg_s = 0.0;
+  double start_time_s = 0.0;
+};
+
+struct FlowSolveStatistics {
+  int newton_iterations = 0;
+  int active_set_rounds = 0;
+  int zero_pressure_nodes = 0;
+  double max_relative_residual = 0.0;  ///< max |mass residual| / mass scale at convergence
+};
+
+class FlowNetwork {
+ public:
+  FlowNetwork(int n_points, std::vector<Fracture> fractures, FluidProperties fluid, FlowSettings settings);
+
+  void add_injection(const Injection& injection);
+  /// Before the first step: the fracture starts wetted, open by `width_m` (at least
+  /// the minimum width) and full of fluid at zero pressure.
+  void fill_initially(int fracture, double width_m);
+
+  // --- one step: begin, then any number of (wet, solve), then commit ----------------
+  void begin_step(double dt_s);
+  /// Adds a fracture to the trial network; false if it already was in it.
+  bool wet(int fracture);
+  /// Trial network: wetted fractures (ends 2k, 2k+1 of the aperture model are the
+  /// ends at point_p and point_q of trial_fractures()[k]) and its nodes.
+  const std::vector<int>& trial_fractures() const { return trial_fractures_; }
+  const std::vector<int>& trial_nodes() const { return trial_nodes_; }
+  int node_index(int point) const { return node_of_point_[point]; }
+  /// Solves the step's mass balance for the aperture model w = base + S p (S has one
+  /// column per trial node). Throws ConvergenceError.
+  FlowSolveStatistics solve(const Eigen::VectorXd& base_aperture_m, const Eigen::MatrixXd& sensitivity_m_Pa);
+  /// Trial pressures per trial node [Pa] (0 at zero-pressure nodes).
+  const Eigen::VectorXd& trial_pressure() const { return pressure_; }
+  /// Pressurised in the trial: in the network, above zero pressure.
+  bool trial_pressurised(int point) const;
+  void commit();
+
+  // --- committed state ------------------------------------------------------------
+  int n_points() const { return static_cast<int>(node_of_point_.size()); }
+  int n_fractures() const { return static_cast<int>(fractures_.size()); }
+  const Fracture& fracture(int f) const { return fractures_[f]; }
+  bool wetted(int fracture) const { return wetted_[fracture] != 0; }
+  double pressure(int point) const { return point_pressure_[point]; }
+  bool zero_pressure(int point) const { return point_zero_[point] != 0; }
+  /// Aperture of a wetted fracture at its end 0 (point_p) or 1 (point_q) [m].
+  double aperture(int fracture, int end) const { return aperture_[2 * fracture + end]; }
+  /// Mean aperture of the wetted fractures at a point (0 if none) [m].
+  double aperture_at_point(int point) const;
+  double time() const { return time_s_; }
+  double injected_mass() const { return injected_kg_; }
+  double initial_mass() const { return initial_mass_; }
+  double leaked_mass() const { return leaked_kg_; }
+  double stored_mass() const;
+  /// |initial + injected - stored - leaked| / (initial + injected); 0 before any injection.
+  double mass_balance_error() const;
+  const FluidProperties& fluid() const { return fluid_; }
+  const FlowSettings& settings() const { return settings_; }
+
+ private:
+  struct Evaluation;
+  void rebuild_trial_topology();
+  void evaluate(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
+                Evaluation& out, bool with_jacobian) const;
+  void newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats);
+
+  std::vector<Fracture> fractures_;
+  FluidProperties fluid_;
+  FlowSettings settings_;
+  std::vector<Injection> injections_;
+
+  // Committed state.
+  double time_s_ = 0.0;
+  std::vector<char> wetted_;
+  std::vector<double> arrival_time_;     ///< per fracture: time it was wetted [s]
+  std::vector<double> aperture_;         ///< per fracture end [m]
+  std::vector<double> point_pressure_, point_mass_;
+  std::vector<char> point_zero_;
+  double injected_kg_ = 0.0, leaked_kg_ = 0.0;
+  double initial_mass_ = 0.0;            ///< fluid present at t = 0 [kg]
+
+  // Trial of the current step.
+  double dt_s_ = 0.0;
+  std::vector<char> trial_wetted_;
+  std::vector<int> trial_fractures_, trial_nodes_, node_of_point_;
+  std::vector<int> fracture_node_a_, fracture_node_b_;   // per trial fracture: node indices
+  Eigen::VectorXd old_mass_, injected_, leak_volume_;    // per trial node
+  Eigen::VectorXd leak_length_;                          // per trial fracture: leaked volume per node
+  Eigen::VectorXd floor_;                                // per trial end: lower bound of the aperture
+  std::vector<char> zero_;                               // per trial node
+  Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_;
+  std::vector<double> guess_pressure_;                   // per point, warm start across topology changes
+};
+
+}  // namespace hfdda::fluid
