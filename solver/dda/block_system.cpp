@@ -188,6 +188,25 @@ void BlockSystem::add_boundary_stress(int boundary_edge, const Eigen::Matrix2d& 
   boundary_stresses_.push_back({boundary_edge, stress_Pa});
 }
 
+void BlockSystem::set_in_situ_stress(const Eigen::Matrix2d& sigma) {
+  for (auto& st : stress_) st = Eigen::Vector3d(sigma(0, 0), sigma(1, 1), sigma(0, 1));
+  // Each joint end carries the traction of its half joint (trapezoidal rule, exact for
+  // a uniform stress): normal force (n.sigma.n) Lc and shear force (t.sigma.n) Lc in
+  // the spring's sign conventions (n: outward normal of the edge block, t along it).
+  for (auto& c : contacts_) {
+    if (c.joint < 0 || c.state == ContactState::open) continue;
+    for (int k = 0; k < c.n_springs; ++k) {
+      auto& s = c.springs[k];
+      const Vec2 p2 = corner(s.edge_block, s.edge_corner);
+      const Vec2 p3 = corner(s.edge_block, (s.edge_corner + 1) % n_corners(s.edge_block));
+      const Vec2 t = (p3 - p2).normalized();
+      const Vec2 n(t.y(), -t.x());
+      s.normal_multiplier_N = n.dot(sigma * n) * c.length_m;
+      s.shear_multiplier_N = t.dot(sigma * n) * c.length_m;
+    }
+  }
+}
+
 void BlockSystem::set_fluid_pressure(std::vector<double> point_pressure_Pa, std::vector<char> joint_wetted) {
   if (point_pressure_Pa.size() != mesh_.points.size() || joint_wetted.size() != mesh_.joints.size())
     throw std::invalid_argument("set_fluid_pressure: sizes do not match the mesh");

@@ -104,6 +104,11 @@ class BlockSystem {
   /// current outward normal (a follower load: self-equilibrated on any closed boundary,
   /// so a body held at one point does not rotate under it), integrated exactly.
   void add_boundary_stress(int boundary_edge, const Eigen::Matrix2d& stress_Pa);
+  /// In-situ stress: every block starts with `stress_Pa` and every closed joint contact
+  /// with the matching traction (times its length) as its contact force, so that with
+  /// the same stress on the whole outer boundary the system is in equilibrium at rest.
+  /// Call before the first step, after the boundary stresses.
+  void set_in_situ_stress(const Eigen::Matrix2d& stress_Pa);
   /// Fluid pressure at the geometric points and which joints are filled with fluid;
   /// wetted joints carry the trapezoidal pressure on both faces as block forces.
   void set_fluid_pressure(std::vector<double> point_pressure_Pa, std::vector<char> joint_wetted);

@@ -9,9 +9,14 @@
 
 namespace hfdda::fluid {
 
+namespace {
+/// Width of the rounded corner of max(w, floor), relative to the floor.
+constexpr double kFloorRounding = 0.01;
+}  // namespace
+
 struct FlowNetwork::Evaluation {
   Eigen::VectorXd pressure, density, aperture, volume, residual, eta;
-  std::vector<char> active;  // per end: the aperture follows the mechanics (not a floor)
+  Eigen::VectorXd slope;  // per end: d aperture / d mechanical aperture (0 on the floor, 1 above it)
   Eigen::MatrixXd jacobian;
 };
 
@@ -106,7 +111,9 @@ void FlowNetwork::rebuild_trial_topology() {
   std::vector<int> degree(n, 0);
   for (int i = 0; i < n; ++i) {
     old_mass_[i] = point_mass_[trial_nodes_[i]];
-    zero_[i] = point_zero_[trial_nodes_[i]];
+    // A node the fluid reaches for the first time starts empty, at zero pressure; it
+    // becomes pressurised once full (seed 2.1: the tip cannot propagate before then).
+    zero_[i] = point_zero_[trial_nodes_[i]] || old_mass_[i] <= 0.0;
   }
   for (const auto& inj : injections_) {
     const int i = node_of_point_[inj.point];
@@ -168,11 +175,22 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
   out.pressure = x;
   for (int i = 0; i < n; ++i)
     if (zero_[i]) out.pressure[i] = 0.0;
+  // w = max(w_mechanics, floor), its corner rounded by a parabola within 1 % of the
+  // floor (C1, exact outside that band) so that Newton sees a smooth mass balance.
   out.aperture = base + s * out.pressure;
-  out.active.assign(2 * nf, 0);
+  out.slope.resize(2 * nf);
   for (int e = 0; e < 2 * nf; ++e) {
-    out.active[e] = out.aperture[e] > floor_[e];
-    if (!out.active[e]) out.aperture[e] = floor_[e];
+    const double band = kFloorRounding * floor_[e];
+    const double z = out.aperture[e] - floor_[e];
+    if (z >= band) {
+      out.slope[e] = 1.0;
+    } else if (z <= -band) {
+      out.aperture[e] = floor_[e];
+      out.slope[e] = 0.0;
+    } else {
+      out.aperture[e] = floor_[e] + (z + band) * (z + band) / (4.0 * band);
+      out.slope[e] = (z + band) / (2.0 * band);
+    }
   }
   out.density.resize(n);
   for (int i = 0; i < n; ++i) out.density[i] = fluid_.density(out.pressure[i]);
@@ -209,7 +227,8 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
     for (int end = 0; end < 2; ++end) {
       const int i = end == 0 ? fracture_node_a_[k] : fracture_node_b_[k];
-      if (out.active[2 * k + end] && !zero_[i]) jac.row(i) += out.density[i] * half * s.row(2 * k + end);
+      if (out.slope[2 * k + end] > 0.0 && !zero_[i])
+        jac.row(i) += out.density[i] * half * out.slope[2 * k + end] * s.row(2 * k + end);
     }
   }
   Eigen::RowVectorXd deta(n);
@@ -218,8 +237,8 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     const double rho = 0.5 * (out.density[a] + out.density[b]);
     const double w = 0.5 * (out.aperture[2 * k] + out.aperture[2 * k + 1]);
     deta.setZero();
-    if (out.active[2 * k]) deta += (1.5 * out.eta[k] / w) * s.row(2 * k);
-    if (out.active[2 * k + 1]) deta += (1.5 * out.eta[k] / w) * s.row(2 * k + 1);
+    if (out.slope[2 * k] > 0.0) deta += (1.5 * out.eta[k] / w * out.slope[2 * k]) * s.row(2 * k);
+    if (out.slope[2 * k + 1] > 0.0) deta += (1.5 * out.eta[k] / w * out.slope[2 * k + 1]) * s.row(2 * k + 1);
     if (!zero_[a]) deta[a] += 0.5 * drho * out.eta[k] / rho;
     if (!zero_[b]) deta[b] += 0.5 * drho * out.eta[k] / rho;
     const double dp = out.pressure[a] - out.pressure[b];
@@ -261,6 +280,17 @@ void FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
       if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit || merit <= tol * mass_scale) break;
     }
     x += alpha * dx;
+    // A node driven below zero pressure is emptying: it becomes a zero-pressure node
+    // at once (seed 2.1), keeping at most the mass it had, rather than dragging the
+    // whole network through large negative pressures.
+    bool switched = false;
+    for (int i = 0; i < n; ++i)
+      if (!zero_[i] && x[i] < 0.0) {
+        zero_[i] = 1;
+        x[i] = std::max(old_mass_[i], 0.0);
+        switched = true;
+      }
+    if (switched) continue;
     max_p = 0.0, change = 0.0;
     for (int i = 0; i < n; ++i)
       if (!zero_[i]) {

@@ -104,6 +104,10 @@ struct ProbeConfig {
 struct FarFieldConfig {
   double sxx_Pa = 0.0, syy_Pa = 0.0, sxy_Pa = 0.0;
   std::vector<std::string> sides{"top", "bottom"};  ///< subset of left/right/bottom/top
+  /// true: the rock starts in equilibrium with the stress (initial block stresses and
+  /// joint contact forces, the traction on all four sides); no loading transient and no
+  /// load carried by fixed points. false: the seed's loading by boundary forces alone.
+  bool in_situ = false;
 };
 
 struct PointLoadConfig {

@@ -474,6 +474,47 @@ Field<T> section(Doc d, S T::*member, const Table<S>& (*table)()) {
   return {doc, read};
 }
 
+/// A nested map that may be absent. Present, it starts from the inherited one (or from
+/// S's defaults) and is merged key by key; null removes an inherited one.
+template <class T, class S>
+Field<T> optional_section(Doc d, std::optional<S> T::*member, const Table<S>& (*table)()) {
+  KeyDoc doc = key_doc(d, "map", "none", "keys below; null removes an inherited one");
+  doc.child = [table] { return section_doc(table()); };
+  auto read = [member, table](FileReader& r, const YAML::Node& n, const std::string& key, T& out) {
+    if (n.IsNull()) {
+      (out.*member).reset();
+      r.forget(key + ".");
+      return;
+    }
+    S merged = (out.*member).value_or(S{});
+    parse_map(r, n, key, table(), merged);
+    out.*member = std::move(merged);
+  };
+  return {doc, read};
+}
+
+bool is_identifier_char(char ch) {
+  return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+         ch == '_';
+}
+
+/// A name that becomes part of an output column name: non-empty, ASCII letters, digits
+/// and '_' only.
+template <class T>
+Field<T> identifier(Doc d, std::string T::*member) {
+  auto read = [member](FileReader& r, const YAML::Node& n, const std::string& key, T& out) {
+    const std::string value = read_string(r, n, key);
+    if (value.empty()) r.fail(n, key, "must not be empty");
+    if (!std::all_of(value.begin(), value.end(), is_identifier_char))
+      r.fail(n, key, "may contain only letters, digits and '_' (got '" + value + "')");
+    out.*member = value;
+  };
+  const std::string value = T{}.*member;
+  return {key_doc(d, "string", value.empty() ? "(empty)" : "\"" + value + "\"",
+                  "non-empty; letters, digits, _"),
+          read};
+}
+
 // --- Rectangles -------------------------------------------------------------
 
 const Table<Rect>& rect_table() {
@@ -687,12 +728,25 @@ const Table<JointConfig>& joint_table() {
   return table;
 }
 
-/// A fracture is a line: its ends must differ.
+/// A fracture is a line: its ends must differ. Fluid can only fill joints that start
+/// open, and the pressure of fluid-filled joints is solved for, not prescribed. Each
+/// flagged value was written in this item (list items start from the defaults).
 void check_fracture_item(const FileReader& r, const YAML::Node& item, const std::string& key,
                          const FractureConfig& fracture, const std::set<std::string>&) {
   if (fracture.from == fracture.to)
     r.fail(item["to"], key + ".to",
            "must differ from 'from' (both are " + format_point(fracture.from) + ")");
+  if (fracture.fluid_filled && !fracture.initially_open)
+    r.fail(item["fluid_filled"], key + ".fluid_filled",
+           "fluid_filled: true needs initially_open: true on the same fracture");
+  if (fracture.fluid_filled && fracture.pressure_Pa)
+    r.fail(item["pressure"], key + ".pressure",
+           "cannot be prescribed on a fracture with fluid_filled: true (its pressure is "
+           "solved for); give one or the other");
+  if (fracture.initial_width_m > 0 && !fracture.fluid_filled)
+    r.fail(item["initial_width"], key + ".initial_width",
+           "is only used with fluid_filled: true (got " +
+               format_number(fracture.initial_width_m) + ")");
 }
 
 const Table<FractureConfig>& fracture_table() {
@@ -700,7 +754,8 @@ const Table<FractureConfig>& fracture_table() {
       "`fractures[]` items",
       "A straight line feature: initial fracture, natural fracture, prescribed path or "
       "interface. Joints lying on it take its values; unset values come from `joints`. "
-      "`from` and `to` differ.",
+      "`from` and `to` differ. `fluid_filled: true` needs `initially_open: true` and "
+      "excludes `pressure`; `initial_width` > 0 needs `fluid_filled: true`.",
       {text({"name", "", "", "label used in outputs"}, &FractureConfig::name),
        required(point({"from", "m", "§3.1: 20 m fracture at the centre", "first end"},
                       &FractureConfig::from, "inside domain.outer")),
@@ -731,7 +786,73 @@ const Table<FractureConfig>& fracture_table() {
                        "joints.friction_angle"),
        optional_number({"pressure", "Pa", "§3.1: 9.81 MPa",
                         "fluid pressure prescribed on its joints"},
-                       &FractureConfig::pressure_Pa, at_least(0), "none")}};
+                       &FractureConfig::pressure_Pa, at_least(0), "none"),
+       boolean({"fluid_filled", "",
+                "§3.2: the two fractures on either side of the injection point were "
+                "initially opened",
+                "its open joints hold fluid (at zero pressure) and belong to the flow "
+                "network from t = 0; needs a `fluid` section"},
+               &FractureConfig::fluid_filled),
+       number({"initial_width", "m", "",
+               "initial aperture of its fluid-filled joints; 0: the minimum width "
+               "(numerics.min_width_main)"},
+              &FractureConfig::initial_width_m, at_least(0), "> 0 only with fluid_filled")}};
+  return table;
+}
+
+const Table<FluidConfig>& fluid_table() {
+  static const Table<FluidConfig> table{
+      "`fluid`",
+      "Present, the flow network of the fracture joints is solved, coupled with the "
+      "blocks; missing keys take the defaults below. Compressible fluid, rho = rho0 (1 + "
+      "(p - p0) / K_f) (seed eq. 2.6); cubic law with viscosity mu (eq. 2.2).",
+      {number({"density", "kg/m^3", "Table 3.1: rho_f = 1000 kg/m^3",
+               "reference density rho0, at the reference pressure"},
+              &FluidConfig::density_kg_m3, greater_than(0)),
+       number({"bulk_modulus", "Pa", "Table 3.1: K_f = 2.2 GPa",
+               "bulk modulus K_f; compressibility c_f = 1 / K_f"},
+              &FluidConfig::bulk_modulus_Pa, greater_than(0)),
+       number({"viscosity", "Pa s", "Table 3.1: mu = 1 mPa s; Table 5.3: 20 mPa s",
+               "dynamic viscosity mu"},
+              &FluidConfig::viscosity_Pa_s, greater_than(0)),
+       number({"reference_pressure", "Pa", "eq. 2.6: p0",
+               "pressure p0 at which the density is rho0"},
+              &FluidConfig::reference_pressure_Pa, any_value()),
+       number({"leak_off_coefficient", "m/s^0.5", "§3.4: C_L = 0.02 mm/s^0.5 = 2e-5",
+               "Carter coefficient C_L of one fracture wall; 0: no leak-off. Both walls "
+               "leak: a wetted joint of length L loses 2 C_L L / sqrt(t - t0) per metre of "
+               "depth, t0 the time fluid reached it (the seed's eq. 2.3 counts one wall; "
+               "NOTES erratum 4)"},
+              &FluidConfig::leak_off_coefficient_m_sqrt_s, at_least(0))}};
+  return table;
+}
+
+const Table<InjectionConfig>& injection_table() {
+  static const Table<InjectionConfig> table{
+      "`injections[]` items",
+      "A fluid source at the mesh vertex nearest `at`; needs a `fluid` section.",
+      {text({"name", "", "", "label used in outputs"}, &InjectionConfig::name),
+       required(point({"at", "m", "§3.2: injection at the origin",
+                       "injection point (the nearest mesh vertex is used)"},
+                      &InjectionConfig::at, "inside domain.outer")),
+       required(number({"mass_rate", "kg/s", "§3.2: Q0 = 4 kg/s; §3.4: 1 kg/s",
+                        "injected mass per second and per metre of out-of-plane thickness"},
+                       &InjectionConfig::mass_rate_kg_s, greater_than(0))),
+       number({"start_time", "s", "", "time at which injection starts (then continues)"},
+              &InjectionConfig::start_time_s, at_least(0))}};
+  return table;
+}
+
+const Table<ProbeConfig>& probe_table() {
+  static const Table<ProbeConfig> table{
+      "`probes[]` items",
+      "A gauge read at the mesh vertex nearest `at` every step; its pressure is the "
+      "history.csv column `probe_<name>_pressure_Pa`, so names are distinct and use "
+      "letters, digits and `_` only. Needs a `fluid` section.",
+      {required(identifier({"name", "", "", "gauge name, part of the output column names"},
+                           &ProbeConfig::name)),
+       required(point({"at", "m", "", "gauge location (the nearest mesh vertex is used)"},
+                      &ProbeConfig::at, "inside domain.outer"))}};
   return table;
 }
 
@@ -747,7 +868,12 @@ const Table<FarFieldConfig>& far_field_table() {
        number({"sxy", "Pa", "", "shear stress"}, &FarFieldConfig::sxy_Pa, any_value()),
        choice_list({"sides", "", "§3.1: upper and lower boundaries",
                     "sides of domain.outer loaded by the far-field stress"},
-                   &FarFieldConfig::sides, {"left", "right", "bottom", "top"})}};
+                   &FarFieldConfig::sides, {"left", "right", "bottom", "top"}),
+       boolean({"in_situ", "", "",
+                "the rock starts stressed and in equilibrium (block stresses, joint contact "
+                "forces, tractions on all four sides; `sides` is then ignored); false: loaded "
+                "by the boundary tractions from rest, as the seed does"},
+               &FarFieldConfig::in_situ)}};
   return table;
 }
 
@@ -808,7 +934,26 @@ const Table<NumericsConfig>& numerics_table() {
               &NumericsConfig::tie_tolerance, greater_than(0)),
        boolean({"shear_failure_of_intact_joints", "", "§2.3 (ii)",
                 "false: intact joints must fail in tension before they may shear"},
-               &NumericsConfig::shear_failure_of_intact_joints)}};
+               &NumericsConfig::shear_failure_of_intact_joints),
+       number({"min_width_main", "m", "§2.1: 0.5 um",
+               "smallest aperture of a wetted joint away from the fracture tips"},
+              &NumericsConfig::min_width_main_m, greater_than(0), ">= min_width_tip"),
+       number({"min_width_tip", "m", "§2.1: 0.1 um",
+               "smallest aperture of a wetted joint at a fracture tip"},
+              &NumericsConfig::min_width_tip_m, greater_than(0), "<= min_width_main"),
+       number({"max_closing_fraction", "-", "§2.1: 5 %",
+               "largest fraction of its aperture a wetted joint may close in one step"},
+              &NumericsConfig::max_closing_fraction, interval(0, true, 1, true)),
+       number({"coupling_tolerance", "-", "§2.4, eqs. 2.25-2.26 (NOTES erratum 2)",
+               "coupled-step stop: relative pressure change and relative mass residual "
+               "below it"},
+              &NumericsConfig::coupling_tolerance, greater_than(0)),
+       integer({"max_coupling_iterations", "", "§2.4", "pressure iterations per coupled solve"},
+               &NumericsConfig::max_coupling_iterations, at_least(1)),
+       integer({"max_step_cuts", "", "",
+                "times a step that fails to converge is retried with dt halved before the "
+                "run stops"},
+               &NumericsConfig::max_step_cuts, at_least(0))}};
   return table;
 }
 
@@ -869,9 +1014,16 @@ const Table<CaseConfig>& case_table() {
              &CaseConfig::body_force_N_m3, "any"),
        fixed_point_list({"fixed_points", "m", "§3.3, §5.2: outer boundary fixed at corners",
                          "points held fixed (stiff springs)"}),
+       optional_section({"fluid", "", "Table 3.1: fluid parameters",
+                         "fracturing fluid; present: the coupled flow network is solved"},
+                        &CaseConfig::fluid, &fluid_table),
+       map_list({"injections", "", "§3.2: Q0 at the origin", "fluid sources"},
+                &CaseConfig::injections, &injection_table, 0, "none"),
+       map_list({"probes", "", "", "pressure and aperture gauges"}, &CaseConfig::probes,
+                &probe_table, 0, "none"),
        section({"contact", "", "Table 3.1: numerical parameters", "contact model"},
                &CaseConfig::contact, &contact_table),
-       section({"numerics", "", "§2.3, §2.4", "iterations and tolerances"},
+       section({"numerics", "", "§2.1, §2.3, §2.4", "iterations and tolerances"},
                &CaseConfig::numerics, &numerics_table),
        section({"time", "", "Table 3.1: time step", "time stepping"}, &CaseConfig::time,
                &time_table),
@@ -966,6 +1118,53 @@ void check_points_in_domain(const CaseConfig& c, const MergedChecker& m) {
     check_point_in_domain(c, m, c.point_loads[i].at, item_key("point_loads", i) + ".at");
   for (std::size_t i = 0; i < c.fixed_points.size(); ++i)
     check_point_in_domain(c, m, c.fixed_points[i].at, item_key("fixed_points", i));
+  for (std::size_t i = 0; i < c.injections.size(); ++i)
+    check_point_in_domain(c, m, c.injections[i].at, item_key("injections", i) + ".at");
+  for (std::size_t i = 0; i < c.probes.size(); ++i)
+    check_point_in_domain(c, m, c.probes[i].at, item_key("probes", i) + ".at");
+}
+
+/// Injections, probes and fluid-filled fractures are parts of the flow network.
+void check_fluid_needed(const CaseConfig& c, const MergedChecker& m) {
+  if (c.fluid) return;
+  const std::string rule = "needs a 'fluid' section (none is given";
+  const std::string removed = m.present("fluid") ? "; 'fluid: null' removed it)" : ")";
+  if (!c.injections.empty()) m.fail("injections", "a fluid injection " + rule + removed);
+  if (!c.probes.empty()) m.fail("probes", "a pressure probe " + rule + removed);
+  for (std::size_t i = 0; i < c.fractures.size(); ++i)
+    if (c.fractures[i].fluid_filled)
+      m.fail(item_key("fractures", i) + ".fluid_filled", "fluid_filled: true " + rule + removed);
+}
+
+/// A flow network with no fluid in it and no source would stay empty.
+void check_fluid_used(const CaseConfig& c, const MergedChecker& m) {
+  if (!c.fluid || !c.injections.empty()) return;
+  for (const auto& fracture : c.fractures)
+    if (fracture.fluid_filled) return;
+  m.fail("fluid", "needs at least one item in 'injections' or one fracture with "
+                  "fluid_filled: true (there is neither)");
+}
+
+void check_probe_names(const CaseConfig& c, const MergedChecker& m) {
+  for (std::size_t i = 0; i < c.probes.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (c.probes[i].name == c.probes[j].name)
+        m.fail(item_key("probes", i) + ".name", "duplicate probe name '" + c.probes[i].name +
+                                                    "' (also probes[" + std::to_string(j) +
+                                                    "]); names must be distinct");
+}
+
+void check_min_widths(const CaseConfig& c, const MergedChecker& m) {
+  const NumericsConfig& n = c.numerics;
+  if (n.min_width_tip_m <= n.min_width_main_m) return;
+  const std::string values = "min_width_tip " + format_number(n.min_width_tip_m) +
+                             ", min_width_main " + format_number(n.min_width_main_m);
+  if (m.present("numerics.min_width_tip") || !m.present("numerics.min_width_main"))
+    m.fail("numerics.min_width_tip", "must be <= numerics.min_width_main (got " + values + ")");
+  m.fail("numerics.min_width_main",
+         "must be >= numerics.min_width_tip (got " + values +
+             "; min_width_tip was not set and defaults to " +
+             format_number(NumericsConfig{}.min_width_tip_m) + ")");
 }
 
 struct CrossCheck {
@@ -982,8 +1181,17 @@ const std::vector<CrossCheck>& cross_checks() {
        check_material_regions},
       {"Both ends of every fracture lie in `domain.outer` (its boundary included).",
        check_fractures_in_domain},
-      {"Every point-load location and fixed point lies in `domain.outer`.",
-       check_points_in_domain}};
+      {"Every point-load location, fixed point, injection point and probe lies in "
+       "`domain.outer`.",
+       check_points_in_domain},
+      {"`injections`, `probes` and a fracture with `fluid_filled: true` need a `fluid` "
+       "section.",
+       check_fluid_needed},
+      {"A `fluid` section needs at least one injection or one fracture with "
+       "`fluid_filled: true`.",
+       check_fluid_used},
+      {"Probe names are distinct.", check_probe_names},
+      {"`numerics.min_width_tip` <= `numerics.min_width_main`.", check_min_widths}};
   return checks;
 }
 
@@ -1110,15 +1318,16 @@ marked *required*. A complete example is
   path (`materials[1].poissons_ratio`) and the rule broken; nothing is run.
 - `extends: base.yaml` reads the base file (path relative to the file that names it)
   before this one; the keys of this file then override it one by one, maps merging
-  key by key. Lists (`materials`, `fractures`, `point_loads`, `fixed_points`,
+  key by key (`fluid` too; `fluid: null` removes an inherited one). Lists (`materials`,
+  `fractures`, `point_loads`, `fixed_points`, `injections`, `probes`,
   `far_field.sides`), points and rectangles are replaced as a whole; list items start
   from the item defaults below. Chains are allowed; a cycle is an error.
 - Numbers are plain YAML numbers (`25e9`, `-5.0e6`); a quoted `"25e9"` is a string.
 - Checks that need the mesh (a material zone with no block, a degenerate block, a
   fracture off the grid lines of a structured mesh) are made when the model is built.
-- The fluid parameters of the seed tables (fluid density and bulk modulus, viscosity,
-  leakoff coefficient, injection rate, natural-fracture width) are not keys of this
-  version.
+- Without a `fluid` section no flow network is solved: fluid acts only through the
+  pressures prescribed on fractures (`fractures[].pressure`). With one, fluid enters
+  through `injections` and fills the joints of fractures marked `fluid_filled`.
 )";
 
 /// Where the `mesh` section was last written (the top file, line 0, when it never was),

@@ -222,9 +222,12 @@ Model build_model(const io::CaseConfig& c) {
   far_field << c.far_field.sxx_Pa, c.far_field.sxy_Pa, c.far_field.sxy_Pa, c.far_field.syy_Pa;
   if (far_field.norm() > 0.0) {
     const double tol = 1e-9 * domain_size(c);
+    static const std::vector<std::string> all_sides{"left", "right", "bottom", "top"};
+    const auto& sides = c.far_field.in_situ ? all_sides : c.far_field.sides;
     for (int e = 0; e < static_cast<int>(m.boundary_edges.size()); ++e)
-      for (const std::string& side : c.far_field.sides)
+      for (const std::string& side : sides)
         if (edge_on_side(m, m.boundary_edges[e], c.domain.outer, side, tol)) system.add_boundary_stress(e, far_field);
+    if (c.far_field.in_situ) system.set_in_situ_stress(far_field);
   }
 
   // Prescribed fluid pressure: on both faces of the fracture's joints and at their points.
