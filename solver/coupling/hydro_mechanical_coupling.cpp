@@ -95,7 +95,6 @@ Eigen::VectorXd HydroMechanicalCoupling::solve(const dda::BlockSystem& system, c
   const fluid::FlowSolveStatistics fs = network_.solve(base, sensitivity_);
   ++stats_.flow_solves;
   stats_.newton_iterations += fs.newton_iterations;
-  stats_.active_set_rounds += fs.active_set_rounds;
   stats_.max_relative_residual = std::max(stats_.max_relative_residual, fs.max_relative_residual);
   refresh_pressurised();
 

@@ -24,7 +24,6 @@ namespace hfdda::coupling {
 struct CouplingStatistics {
   int flow_solves = 0;            ///< one per ALM iteration
   int newton_iterations = 0;
-  int active_set_rounds = 0;
   int fractures_wetted = 0;
   int max_nodes = 0;
   double max_relative_residual = 0.0;

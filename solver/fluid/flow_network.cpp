@@ -12,10 +12,12 @@ namespace hfdda::fluid {
 namespace {
 /// Width of the rounded corner of max(w, floor), relative to the floor.
 constexpr double kFloorRounding = 0.01;
+/// Half-width of the rounded corner of the pressure max(y, 0) [Pa].
+constexpr double kPressureRounding = 1.0e3;
 }  // namespace
 
 struct FlowNetwork::Evaluation {
-  Eigen::VectorXd pressure, density, aperture, volume, residual, eta;
+  Eigen::VectorXd pressure, pressure_slope, density, aperture, volume, storage, residual, eta;
   Eigen::VectorXd slope;  // per end: d aperture / d mechanical aperture (0 on the floor, 1 above it)
   Eigen::MatrixXd jacobian;
 };
@@ -33,7 +35,9 @@ FlowNetwork::FlowNetwork(int n_points, std::vector<Fracture> fractures, FluidPro
   point_mass_.assign(n_points, 0.0);
   point_zero_.assign(n_points, 0);
   node_of_point_.assign(n_points, -1);
-  guess_pressure_.assign(n_points, 0.0);
+  guess_state_.assign(n_points, 0.0);
+  point_state_.assign(n_points, 0.0);
+  reached_.assign(n_points, 0);
   trial_wetted_ = wetted_;
 }
 
@@ -51,6 +55,10 @@ void FlowNetwork::fill_initially(int f, double width_m) {
   const double mass_per_end = fluid_.density(0.0) * 0.5 * fractures_[f].length_m * w;
   point_mass_[fractures_[f].point_p] += mass_per_end;
   point_mass_[fractures_[f].point_q] += mass_per_end;
+  for (int point : {fractures_[f].point_p, fractures_[f].point_q}) {
+    reached_[point] = 1;
+    point_state_[point] = 0.0;  // full at zero pressure
+  }
   initial_mass_ += 2.0 * mass_per_end;
   trial_wetted_ = wetted_;
 }
@@ -62,7 +70,7 @@ void FlowNetwork::begin_step(double dt_s) {
   if (!(dt_s > 0.0)) throw std::invalid_argument("FlowNetwork::begin_step: dt must be positive");
   dt_s_ = dt_s;
   trial_wetted_ = wetted_;
-  guess_pressure_ = point_pressure_;
+  guess_state_ = point_state_;
   rebuild_trial_topology();
 }
 
@@ -75,13 +83,13 @@ bool FlowNetwork::wet(int f) {
 
 bool FlowNetwork::trial_pressurised(int point) const {
   const int i = node_of_point_[point];
-  return i >= 0 && !zero_[i] && pressure_.size() > i && pressure_[i] > 0.0;
+  return i >= 0 && i < unknowns_.size() && unknowns_[i] > 0.0;
 }
 
 void FlowNetwork::rebuild_trial_topology() {
   // Warm start: keep the trial pressures of the current nodes.
-  for (std::size_t i = 0; i < trial_nodes_.size() && static_cast<Eigen::Index>(i) < pressure_.size(); ++i)
-    guess_pressure_[trial_nodes_[i]] = pressure_[i];
+  for (std::size_t i = 0; i < trial_nodes_.size() && static_cast<Eigen::Index>(i) < unknowns_.size(); ++i)
+    guess_state_[trial_nodes_[i]] = unknowns_[i];
   for (int point : trial_nodes_) node_of_point_[point] = -1;
   trial_fractures_.clear();
   trial_nodes_.clear();
@@ -107,14 +115,8 @@ void FlowNetwork::rebuild_trial_topology() {
   old_mass_.setZero(n);
   injected_.setZero(n);
   leak_volume_.setZero(n);
-  zero_.assign(n, 0);
   std::vector<int> degree(n, 0);
-  for (int i = 0; i < n; ++i) {
-    old_mass_[i] = point_mass_[trial_nodes_[i]];
-    // A node the fluid reaches for the first time starts empty, at zero pressure; it
-    // becomes pressurised once full (seed 2.1: the tip cannot propagate before then).
-    zero_[i] = point_zero_[trial_nodes_[i]] || old_mass_[i] <= 0.0;
-  }
+  for (int i = 0; i < n; ++i) old_mass_[i] = point_mass_[trial_nodes_[i]];
   for (const auto& inj : injections_) {
     const int i = node_of_point_[inj.point];
     const double seconds = std::max(0.0, t1 - std::max(t0, inj.start_time_s));
@@ -150,16 +152,14 @@ void FlowNetwork::rebuild_trial_topology() {
       floor_[2 * k + end] = std::max(minimum, closing);
     }
   }
+  // Warm start from the last state of each node; a node the fluid reaches for the
+  // first time starts empty (fill state rho = 0).
   unknowns_.setZero(n);
-  pressure_.setZero(n);
   for (int i = 0; i < n; ++i) {
-    if (zero_[i]) {
-      unknowns_[i] = old_mass_[i];
-    } else {
-      unknowns_[i] = guess_pressure_[trial_nodes_[i]];
-      pressure_[i] = unknowns_[i];
-    }
+    const int point = trial_nodes_[i];
+    unknowns_[i] = reached_[point] ? guess_state_[point] : empty_state();
   }
+  pressure_ = unknowns_.cwiseMax(0.0);
   aperture_trial_.setZero(2 * nf);
   mass_new_.setZero(n);
   leak_mass_.setZero(n);
@@ -172,9 +172,23 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
                            Evaluation& out, bool with_jacobian) const {
   const int n = static_cast<int>(trial_nodes_.size());
   const int nf = static_cast<int>(trial_fractures_.size());
-  out.pressure = x;
-  for (int i = 0; i < n; ++i)
-    if (zero_[i]) out.pressure[i] = 0.0;
+  // The unknown y of a node is its fill state: the stored mass is rho(y) V for every
+  // y (eq. 2.6 continued below zero pressure), while the pressure that drives the flow
+  // and loads the rock is max(y, 0), its corner rounded within kPressureRounding.
+  // y < 0 is a zero-pressure node holding less than rho(0) V (seed 2.1, Figure 2.2).
+  out.pressure.resize(n);
+  out.pressure_slope.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const double y = x[i];
+    if (y >= kPressureRounding) {
+      out.pressure[i] = y, out.pressure_slope[i] = 1.0;
+    } else if (y <= -kPressureRounding) {
+      out.pressure[i] = 0.0, out.pressure_slope[i] = 0.0;
+    } else {
+      out.pressure[i] = (y + kPressureRounding) * (y + kPressureRounding) / (4.0 * kPressureRounding);
+      out.pressure_slope[i] = (y + kPressureRounding) / (2.0 * kPressureRounding);
+    }
+  }
   // w = max(w_mechanics, floor), its corner rounded by a parabola within 1 % of the
   // floor (C1, exact outside that band) so that Newton sees a smooth mass balance.
   out.aperture = base + s * out.pressure;
@@ -200,10 +214,12 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     out.volume[fracture_node_a_[k]] += half * out.aperture[2 * k];
     out.volume[fracture_node_b_[k]] += half * out.aperture[2 * k + 1];
   }
+  out.storage.resize(n);
   out.residual.resize(n);
-  for (int i = 0; i < n; ++i)
-    out.residual[i] = (zero_[i] ? x[i] : out.density[i] * out.volume[i]) - old_mass_[i] +
-                      out.density[i] * leak_volume_[i] - injected_[i];
+  for (int i = 0; i < n; ++i) {
+    out.storage[i] = fluid_.density(x[i]) * out.volume[i];
+    out.residual[i] = out.storage[i] - old_mass_[i] + out.density[i] * leak_volume_[i] - injected_[i];
+  }
   out.eta.resize(nf);
   const double mu12 = 12.0 * fluid_.viscosity_Pa_s;
   for (int k = 0; k < nf; ++k) {
@@ -218,17 +234,17 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
   }
   if (!with_jacobian) return;
 
+  // Derivatives with respect to the pressures p first, then by the chain rule to y.
   const double drho = fluid_.density_derivative();
   Eigen::MatrixXd& jac = out.jacobian;
   jac.setZero(n, n);
-  for (int i = 0; i < n; ++i)
-    if (!zero_[i]) jac(i, i) += drho * (out.volume[i] + leak_volume_[i]);
+  for (int i = 0; i < n; ++i) jac(i, i) += drho * leak_volume_[i];
   for (int k = 0; k < nf; ++k) {
     const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
     for (int end = 0; end < 2; ++end) {
       const int i = end == 0 ? fracture_node_a_[k] : fracture_node_b_[k];
-      if (out.slope[2 * k + end] > 0.0 && !zero_[i])
-        jac.row(i) += out.density[i] * half * out.slope[2 * k + end] * s.row(2 * k + end);
+      if (out.slope[2 * k + end] > 0.0)
+        jac.row(i) += fluid_.density(x[i]) * half * out.slope[2 * k + end] * s.row(2 * k + end);
     }
   }
   Eigen::RowVectorXd deta(n);
@@ -239,8 +255,8 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     deta.setZero();
     if (out.slope[2 * k] > 0.0) deta += (1.5 * out.eta[k] / w * out.slope[2 * k]) * s.row(2 * k);
     if (out.slope[2 * k + 1] > 0.0) deta += (1.5 * out.eta[k] / w * out.slope[2 * k + 1]) * s.row(2 * k + 1);
-    if (!zero_[a]) deta[a] += 0.5 * drho * out.eta[k] / rho;
-    if (!zero_[b]) deta[b] += 0.5 * drho * out.eta[k] / rho;
+    deta[a] += 0.5 * drho * out.eta[k] / rho;
+    deta[b] += 0.5 * drho * out.eta[k] / rho;
     const double dp = out.pressure[a] - out.pressure[b];
     const Eigen::RowVectorXd d_outflow = dt_s_ * dp * deta;
     jac.row(a) += d_outflow;
@@ -250,12 +266,8 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     jac(b, b) += dt_s_ * out.eta[k];
     jac(b, a) -= dt_s_ * out.eta[k];
   }
-  // Zero-pressure nodes: their unknown is the stored mass, which only their own row sees.
-  for (int i = 0; i < n; ++i)
-    if (zero_[i]) {
-      jac.col(i).setZero();
-      jac(i, i) = 1.0;
-    }
+  for (int i = 0; i < n; ++i) jac.col(i) *= out.pressure_slope[i];
+  for (int i = 0; i < n; ++i) jac(i, i) += drho * out.volume[i];  // storage rho(y) V
 }
 
 void FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats) {
@@ -280,23 +292,11 @@ void FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
       if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit || merit <= tol * mass_scale) break;
     }
     x += alpha * dx;
-    // A node driven below zero pressure is emptying: it becomes a zero-pressure node
-    // at once (seed 2.1), keeping at most the mass it had, rather than dragging the
-    // whole network through large negative pressures.
-    bool switched = false;
-    for (int i = 0; i < n; ++i)
-      if (!zero_[i] && x[i] < 0.0) {
-        zero_[i] = 1;
-        x[i] = std::max(old_mass_[i], 0.0);
-        switched = true;
-      }
-    if (switched) continue;
     max_p = 0.0, change = 0.0;
-    for (int i = 0; i < n; ++i)
-      if (!zero_[i]) {
-        max_p = std::max(max_p, std::abs(x[i]));
-        change = std::max(change, std::abs(alpha * dx[i]));
-      }
+    for (int i = 0; i < n; ++i) {
+      max_p = std::max(max_p, std::abs(x[i]));
+      change = std::max(change, std::abs(alpha * dx[i]));
+    }
     // Relative pressure change and mass residual (NOTES erratum 2); 1 mPa absolute floor.
     if (residual <= tol && change <= tol * max_p + 1e-3) {
       stats.max_relative_residual = std::max(stats.max_relative_residual, residual);
@@ -318,36 +318,15 @@ FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, const Eigen:
   FlowSolveStatistics stats;
   if (n == 0) return stats;
   Evaluation ev;
-  for (int round = 0;; ++round) {
-    if (round == settings_.max_active_set_rounds)
-      throw ConvergenceError("fluid flow: the set of zero-pressure nodes did not settle in " +
-                             std::to_string(round) + " rounds");
-    newton(base, s, stats);
-    ++stats.active_set_rounds;
-    evaluate(unknowns_, base, s, ev, false);
-    int changes = 0;
-    for (int i = 0; i < n; ++i) {
-      const double full_mass = fluid_.density(0.0) * ev.volume[i];
-      if (!zero_[i] && unknowns_[i] < 0.0) {
-        zero_[i] = 1;  // seed 2.1: negative pressure -> zero-pressure node, volume unknown
-        unknowns_[i] = std::min(std::max(old_mass_[i], 0.0), full_mass);
-        ++changes;
-      } else if (zero_[i] && unknowns_[i] > full_mass * (1.0 + 1e-12)) {
-        zero_[i] = 0;  // full again: back to an unknown pressure
-        unknowns_[i] = 0.0;
-        ++changes;
-      }
-    }
-    if (changes == 0) break;
-  }
+  newton(base, s, stats);
+  evaluate(unknowns_, base, s, ev, false);
   // Mass-conservative update: the stored mass is what flowed in, to round-off.
   pressure_ = ev.pressure;
   aperture_trial_ = ev.aperture;
   for (int i = 0; i < n; ++i) {
-    const double storage = zero_[i] ? unknowns_[i] : ev.density[i] * ev.volume[i];
-    mass_new_[i] = storage - ev.residual[i];
+    mass_new_[i] = ev.storage[i] - ev.residual[i];
     leak_mass_[i] = ev.density[i] * leak_volume_[i];
-    stats.zero_pressure_nodes += zero_[i];
+    stats.zero_pressure_nodes += unknowns_[i] < 0.0;
   }
   return stats;
 }
@@ -366,7 +345,9 @@ void FlowNetwork::commit() {
     const int point = trial_nodes_[i];
     point_pressure_[point] = pressure_[i];
     point_mass_[point] = mass_new_[i];
-    point_zero_[point] = zero_[i];
+    point_zero_[point] = unknowns_[i] < 0.0;
+    point_state_[point] = unknowns_[i];
+    reached_[point] = 1;
   }
   injected_kg_ += injected_.sum();
   leaked_kg_ += leak_mass_.sum();

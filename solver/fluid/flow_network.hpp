@@ -17,8 +17,10 @@
 //           the step: C_L L 2 (sqrt(t+dt - t0) - sqrt(t - t0))  (NOTES erratum 4)
 //
 // A node whose pressure would be negative becomes a zero-pressure node: p = 0 and its
-// stored mass is solved for instead (seed 2.1, Figure 2.2); it returns to the
-// pressurised set when that mass exceeds rho(0) V_i.
+// stored mass is solved for instead (seed 2.1, Figure 2.2). Both kinds share one
+// unknown per node, the fill state y: the node stores rho(y) V (eq. 2.6 continued
+// below zero), and the pressure acting on flow and rock is max(y, 0). A partly filled
+// node has y < 0; no switching between node kinds is needed.
 //
 // Apertures come from the mechanics as an affine model of the nodal pressures,
 // w_e(p) = base_e + S_e . p (exact for the linear block system once its contacts are
@@ -53,7 +55,6 @@ struct FlowSettings {
   double max_closing_fraction = 0.05;
   double tolerance = 1.0e-9;        ///< Newton: relative pressure change and mass residual
   int max_newton_iterations = 60;
-  int max_active_set_rounds = 40;   ///< zero-pressure set updates per solve
 };
 
 struct Fracture {
@@ -69,7 +70,6 @@ struct Injection {
 
 struct FlowSolveStatistics {
   int newton_iterations = 0;
-  int active_set_rounds = 0;
   int zero_pressure_nodes = 0;
   double max_relative_residual = 0.0;  ///< max |mass residual| / mass scale at convergence
 };
@@ -152,9 +152,11 @@ class FlowNetwork {
   Eigen::VectorXd old_mass_, injected_, leak_volume_;    // per trial node
   Eigen::VectorXd leak_length_;                          // per trial fracture: leaked volume per node
   Eigen::VectorXd floor_;                                // per trial end: lower bound of the aperture
-  std::vector<char> zero_;                               // per trial node
   Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_;
-  std::vector<double> guess_pressure_;                   // per point, warm start across topology changes
+  std::vector<double> point_state_;                      // committed fill state y per point [Pa]
+  std::vector<char> reached_;                            // the fluid has been at the point
+  std::vector<double> guess_state_;                      // per point, warm start across topology changes
+  double empty_state() const { return fluid_.reference_pressure_Pa - fluid_.bulk_modulus_Pa; }
 };
 
 }  // namespace hfdda::fluid

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -147,6 +148,7 @@ void advance(Model& model, double dt_s, int cuts_left, dda::StepStatistics& stat
   } catch (const ConvergenceError& e) {
     if (cuts_left <= 0) throw;
     ++counters.step_cuts;
+    if (std::getenv("HFDDA_TRACE_CUTS")) std::fprintf(stderr, "step of %g s cut: %s\n", dt_s, e.what());
     advance(model, 0.5 * dt_s, cuts_left - 1, stats, counters);
     advance(model, 0.5 * dt_s, cuts_left - 1, stats, counters);
   }
