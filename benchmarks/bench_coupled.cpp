@@ -1,0 +1,85 @@
+// Time per coupled hydro-mechanical step (seed 2.4) on the chapter-3 cases: the KGD
+// fracture at dx = 0.5 m (verification/kgd/base.yaml, 20 steps of 0.5 s; issue target:
+// the whole run under 60 s on 2 cores) and free propagation in symmetric media
+// (seed 3.4, 40 x 40 m inner domain, 2 m triangles, 30 steps of 1 s). Each benchmark
+// runs the whole simulation once and reports per-step means: open-close (outer) and
+// Newton (inner) iterations, factorisations of K, and the ratio of a step's time to
+// one factorisation of K, the floor a step is compared against.
+
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "io/case_config.hpp"
+#include "simulation/model.hpp"
+
+namespace {
+
+using namespace hfdda;
+
+const char* kSymmetricFree = R"(
+title: "free propagation in symmetric media (seed 3.4), delta sigma = 0"
+domain:
+  outer: {xmin: -24, xmax: 24, ymin: -24, ymax: 24}
+  inner: {xmin: -20, xmax: 20, ymin: -20, ymax: 20}
+mesh: {type: structured, cell_size: 2.0, outer_growth: 1.0, split: four}
+materials:
+  - {name: rock, region: all, youngs_modulus: 25.0e9, poissons_ratio: 0.25, density: 2650}
+  - {name: soft_outer, region: outer, youngs_modulus: 1.0e9, poissons_ratio: 0.0, density: 2650}
+joints: {tensile_strength: 1.0e6, cohesion: 0, friction_angle: 30}
+fractures:
+  - {name: start, from: [-2, 0], to: [2, 0], initially_open: true, fluid_filled: true}
+fluid: {density: 1000, bulk_modulus: 2.2e9, viscosity: 1.0e-3}
+injections:
+  - {at: [0, 0], mass_rate: 1.0}
+far_field: {sxx: -5.0e6, syy: -5.0e6, sxy: 0, in_situ: true}
+fixed_points: [[-24, -24], [24, -24], [24, 24], [-24, 24]]
+time: {dt: 1.0, end_time: 30.0}
+output: {every_steps: 0, vtu: false}
+)";
+
+void run_case(benchmark::State& state, const io::CaseConfig& config, double target_s) {
+  const int steps = static_cast<int>(std::llround(config.time.end_time_s / config.time.dt_s));
+  dda::StepStatistics total;
+  int newton = 0, blocks = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    simulation::Model model = simulation::build_model(config);
+    blocks = model.system->n_blocks();
+    total = {};
+    newton = 0;
+    state.ResumeTiming();
+    for (int s = 0; s < steps; ++s) {
+      const auto st = model.system->step(config.time.dt_s, model.coupling.get());
+      total.open_close_iterations += st.open_close_iterations;
+      total.factorizations += st.factorizations;
+      total.seconds_factorization += st.seconds_factorization;
+      total.seconds_total += st.seconds_total;
+      newton += model.coupling->statistics().newton_iterations;
+    }
+  }
+  state.counters["blocks"] = blocks;
+  state.counters["steps"] = steps;
+  state.counters["step_s"] = total.seconds_total / steps;
+  state.counters["outer_per_step"] = double(total.open_close_iterations) / steps;
+  state.counters["newton_per_step"] = double(newton) / steps;
+  state.counters["factorizations_per_step"] = double(total.factorizations) / steps;
+  const double factorize_s = total.seconds_factorization / std::max(1, total.factorizations);
+  state.counters["factorize_s"] = factorize_s;
+  state.counters["step_over_factorize"] = total.seconds_total / steps / factorize_s;
+  if (target_s > 0) state.counters["target_s"] = target_s;
+}
+
+void BM_CoupledKgdDx05(benchmark::State& state) {
+  run_case(state, io::load_case_file(std::string(HFDDA_SOURCE_DIR) + "/verification/kgd/base.yaml"), 60.0);
+}
+
+void BM_CoupledSymmetricFree(benchmark::State& state) {
+  run_case(state, io::load_case_text(kSymmetricFree, "symmetric_free.yaml"), 0.0);
+}
+
+}  // namespace
+
+BENCHMARK(BM_CoupledKgdDx05)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_CoupledSymmetricFree)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_MAIN();
