@@ -12,6 +12,7 @@
 
 #include "io/case_config.hpp"
 #include "simulation/model.hpp"
+#include "simulation/run.hpp"
 
 namespace {
 
@@ -41,22 +42,19 @@ output: {every_steps: 0, vtu: false}
 void run_case(benchmark::State& state, const io::CaseConfig& config, double target_s) {
   const int steps = static_cast<int>(std::llround(config.time.end_time_s / config.time.dt_s));
   dda::StepStatistics total;
-  int newton = 0, blocks = 0;
+  int newton = 0, blocks = 0, cuts = 0;
   for (auto _ : state) {
     state.PauseTiming();
     simulation::Model model = simulation::build_model(config);
     blocks = model.system->n_blocks();
     total = {};
-    newton = 0;
+    simulation::FlowStepCounters counters;
     state.ResumeTiming();
-    for (int s = 0; s < steps; ++s) {
-      const auto st = model.system->step(config.time.dt_s, model.coupling.get());
-      total.open_close_iterations += st.open_close_iterations;
-      total.factorizations += st.factorizations;
-      total.seconds_factorization += st.seconds_factorization;
-      total.seconds_total += st.seconds_total;
-      newton += model.coupling->statistics().newton_iterations;
-    }
+    // The runner's step with cut-back, without its output.
+    for (int s = 0; s < steps; ++s)
+      simulation::advance(model, config.time.dt_s, config.numerics.max_step_cuts, total, counters);
+    newton = counters.newton_iterations;
+    cuts = counters.step_cuts;
   }
   state.counters["blocks"] = blocks;
   state.counters["steps"] = steps;
@@ -67,6 +65,7 @@ void run_case(benchmark::State& state, const io::CaseConfig& config, double targ
   const double factorize_s = total.seconds_factorization / std::max(1, total.factorizations);
   state.counters["factorize_s"] = factorize_s;
   state.counters["step_over_factorize"] = total.seconds_total / steps / factorize_s;
+  state.counters["step_cuts"] = cuts;
   if (target_s > 0) state.counters["target_s"] = target_s;
 }
 

@@ -47,12 +47,6 @@ struct OutputSeries {
   }
 };
 
-/// Per-step counters of the fluid coupling, summed over the sub-steps of a cut step.
-struct FlowStepCounters {
-  int fractures_wetted = 0, newton_iterations = 0, step_cuts = 0;
-  double max_relative_residual = 0.0;
-};
-
 std::vector<std::string> history_columns(const Model& model) {
   std::vector<std::string> columns{
       "step", "time_s", "open_close_iterations", "alm_iterations", "factorizations", "bonds_broken",
@@ -134,6 +128,8 @@ void add_statistics(dda::StepStatistics& total, const dda::StepStatistics& s) {
   total.seconds_total += s.seconds_total;
 }
 
+}  // namespace
+
 /// One step of length dt; a step that does not converge is cut in two halves, up to
 /// `cuts_left` times deep (the coupled step's retry). Rethrows the last failure.
 void advance(Model& model, double dt_s, int cuts_left, dda::StepStatistics& stats, FlowStepCounters& counters) {
@@ -183,8 +179,6 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
                  {"seconds_solve", r.totals.seconds_solve}};
   io::write_file_atomically(options.output_dir + "/summary.json", j.dump(2) + "\n");
 }
-
-}  // namespace
 
 RunResult run(Model& model, const RunOptions& options) {
   const auto start = Clock::now();

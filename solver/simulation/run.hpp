@@ -30,6 +30,17 @@ struct RunResult {
   RunTotals totals;
 };
 
+/// Per-step counters of the fluid coupling, summed over the sub-steps of a cut step.
+struct FlowStepCounters {
+  int fractures_wetted = 0, newton_iterations = 0, step_cuts = 0;
+  double max_relative_residual = 0.0;
+};
+
+/// One (coupled) step of length dt; a step that does not converge is cut in two
+/// halves, up to `cuts_left` times deep. Statistics are added to `stats` and
+/// `counters`. Rethrows the last ConvergenceError if even the smallest step fails.
+void advance(Model& model, double dt_s, int cuts_left, dda::StepStatistics& stats, FlowStepCounters& counters);
+
 /// Runs the case to its end time, writing history.csv every step, joint CSV and VTU
 /// at output steps and at the end, and summary.json. A step that fails to converge
 /// ends the run with completed = false; everything up to the last committed step is
