@@ -25,7 +25,11 @@
 #include "simulation/run.hpp"
 #include "simulation/snapshots.hpp"
 
+#include "driver_support.hpp"
+
 namespace {
+
+using hfdda::verification::Check;
 
 using namespace hfdda;
 
@@ -106,29 +110,13 @@ void write_profile(const std::string& path, const Profile& p) {
   io::write_file_atomically(path, text);
 }
 
-struct Check {
-  std::string name;
-  double value, threshold;
-  std::string comparison, expected, note;
-  bool gating;
-  bool passed() const { return comparison == "<=" ? value <= threshold : value > threshold; }
-  bool matches() const { return passed() == (expected == "pass"); }
-};
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string tier = "full", case_dir, out_dir;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i];
-    if (key == "--tier") tier = argv[i + 1];
-    else if (key == "--case-dir") case_dir = argv[i + 1];
-    else if (key == "--out") out_dir = argv[i + 1];
-  }
-  if (case_dir.empty() || out_dir.empty() || (tier != "quick" && tier != "full")) {
-    std::fprintf(stderr, "usage: verify_griffith --tier quick|full --case-dir DIR --out RESULT_DIR\n");
-    return 2;
-  }
+  const auto options = verification::parse_driver_options(argc, argv, "verify_griffith");
+  if (!options) return 2;
+  const std::string &tier = options->tier, &case_dir = options->case_dir, &out_dir = options->out_dir;
   try {
     const YAML::Node thresholds = YAML::LoadFile(case_dir + "/thresholds.yaml");
     auto threshold = [&](const char* key) { return thresholds[key]["value"].as<double>(); };
@@ -189,15 +177,8 @@ int main(int argc, char** argv) {
     result["title"] = "Griffith crack under constant pressure";
     result["seed_section"] = "3.1";
     result["tier"] = tier;
-    bool all_match = true, gating_match = true;
-    for (const Check& c : checks) {
-      all_match = all_match && c.matches();
-      if (c.gating) gating_match = gating_match && c.matches();
-      result["checks"].push_back({{"name", c.name}, {"value", c.value}, {"threshold", c.threshold},
-                                  {"comparison", c.comparison}, {"expected", c.expected}, {"passed", c.passed()},
-                                  {"gating", c.gating}, {"note", c.note}});
-    }
-    result["status"] = all_match ? "pass" : "fail";
+    const bool gating_match = verification::record_checks(checks, result);
+    const bool all_match = result["status"] == "pass";
     for (const auto& r : results) {
       auto& m = result["metrics"][r.variant.name];
       m["label"] = r.variant.label;

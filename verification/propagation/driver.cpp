@@ -44,7 +44,12 @@
 #include "simulation/model.hpp"
 #include "simulation/run.hpp"
 
+#include "driver_support.hpp"
+
 namespace {
+
+using hfdda::verification::Check;
+using hfdda::verification::finite_or_null;
 
 using namespace hfdda;
 
@@ -413,41 +418,13 @@ VariantResult run_variant(const Variant& v, const std::string& case_dir, const s
   return r;
 }
 
-struct Check {
-  std::string name;
-  double value;
-  nlohmann::json threshold;  // a number, or [lo, hi] for "in"
-  std::string comparison, expected, note;
-  bool gating;
-  bool passed() const {
-    if (!std::isfinite(value)) return false;
-    if (comparison == "in") return value >= threshold[0].get<double>() && value <= threshold[1].get<double>();
-    const double t = threshold.get<double>();
-    if (comparison == "<=") return value <= t;
-    if (comparison == "<") return value < t;
-    if (comparison == ">=") return value >= t;
-    if (comparison == ">") return value > t;
-    return value == t;  // "=="
-  }
-  bool matches() const { return passed() == (expected == "pass"); }
-};
-
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string tier = "full", case_dir, out_dir;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i];
-    if (key == "--tier") tier = argv[i + 1];
-    else if (key == "--case-dir") case_dir = argv[i + 1];
-    else if (key == "--out") out_dir = argv[i + 1];
-  }
-  if (case_dir.empty() || out_dir.empty() || (tier != "quick" && tier != "full")) {
-    std::fprintf(stderr, "usage: verify_propagation --tier quick|full --case-dir DIR --out RESULT_DIR\n");
-    return 2;
-  }
+  const auto options = verification::parse_driver_options(argc, argv, "verify_propagation");
+  if (!options) return 2;
+  const std::string &tier = options->tier, &case_dir = options->case_dir, &out_dir = options->out_dir;
   try {
     const YAML::Node thresholds = YAML::LoadFile(case_dir + "/thresholds.yaml");
     auto threshold = [&](const char* key) { return thresholds[key]["value"].as<double>(); };
@@ -594,15 +571,8 @@ int main(int argc, char** argv) {
     result["title"] = "Fracture propagation in symmetric and asymmetric media";
     result["seed_section"] = "3.4, 3.5";
     result["tier"] = tier;
-    bool all_match = true, gating_match = true;
-    for (const Check& c : checks) {
-      all_match = all_match && c.matches();
-      if (c.gating) gating_match = gating_match && c.matches();
-      result["checks"].push_back({{"name", c.name}, {"value", finite_or_null(c.value)}, {"threshold", c.threshold},
-                                  {"comparison", c.comparison}, {"expected", c.expected}, {"passed", c.passed()},
-                                  {"gating", c.gating}, {"note", c.note}});
-    }
-    result["status"] = all_match ? "pass" : "fail";
+    const bool gating_match = verification::record_checks(checks, result);
+    const bool all_match = result["status"] == "pass";
     nlohmann::json figures = nlohmann::json::array();
     for (const std::string& name : order) {
       const VariantResult& r = results.at(name);
