@@ -33,7 +33,6 @@ FlowNetwork::FlowNetwork(int n_points, std::vector<Fracture> fractures, FluidPro
   aperture_.assign(2 * nf, 0.0);
   point_pressure_.assign(n_points, 0.0);
   point_mass_.assign(n_points, 0.0);
-  point_zero_.assign(n_points, 0);
   node_of_point_.assign(n_points, -1);
   guess_state_.assign(n_points, 0.0);
   point_state_.assign(n_points, 0.0);
@@ -129,7 +128,6 @@ void FlowNetwork::rebuild_trial_topology() {
     }
     injected_[i] += inj.mass_rate_kg_s * seconds;
   }
-  leak_length_.setZero(nf);
   const double cl = fluid_.leak_off_coefficient_m_sqrt_s;
   for (int k = 0; k < nf; ++k) {
     const int f = trial_fractures_[k];
@@ -138,9 +136,10 @@ void FlowNetwork::rebuild_trial_topology() {
     if (cl <= 0.0) continue;
     // Fluid arrives in a newly wetted fracture at the start of the step.
     const double arrival = wetted_[f] ? arrival_time_[f] : t0;
-    leak_length_[k] = cl * fractures_[f].length_m * 2.0 * (std::sqrt(t1 - arrival) - std::sqrt(std::max(0.0, t0 - arrival)));
-    leak_volume_[fracture_node_a_[k]] += leak_length_[k];
-    leak_volume_[fracture_node_b_[k]] += leak_length_[k];
+    const double per_node =
+        cl * fractures_[f].length_m * 2.0 * (std::sqrt(t1 - arrival) - std::sqrt(std::max(0.0, t0 - arrival)));
+    leak_volume_[fracture_node_a_[k]] += per_node;
+    leak_volume_[fracture_node_b_[k]] += per_node;
   }
   floor_.setZero(2 * nf);
   for (int k = 0; k < nf; ++k) {
@@ -345,7 +344,6 @@ void FlowNetwork::commit() {
     const int point = trial_nodes_[i];
     point_pressure_[point] = pressure_[i];
     point_mass_[point] = mass_new_[i];
-    point_zero_[point] = unknowns_[i] < 0.0;
     point_state_[point] = unknowns_[i];
     reached_[point] = 1;
   }

@@ -107,7 +107,7 @@ class FlowNetwork {
   const Fracture& fracture(int f) const { return fractures_[f]; }
   bool wetted(int fracture) const { return wetted_[fracture] != 0; }
   double pressure(int point) const { return point_pressure_[point]; }
-  bool zero_pressure(int point) const { return point_zero_[point] != 0; }
+  bool zero_pressure(int point) const { return reached_[point] && point_state_[point] < 0.0; }
   /// Aperture of a wetted fracture at its end 0 (point_p) or 1 (point_q) [m].
   double aperture(int fracture, int end) const { return aperture_[2 * fracture + end]; }
   /// Mean aperture of the wetted fractures at a point (0 if none) [m].
@@ -140,7 +140,6 @@ class FlowNetwork {
   std::vector<double> arrival_time_;     ///< per fracture: time it was wetted [s]
   std::vector<double> aperture_;         ///< per fracture end [m]
   std::vector<double> point_pressure_, point_mass_;
-  std::vector<char> point_zero_;
   double injected_kg_ = 0.0, leaked_kg_ = 0.0;
   double initial_mass_ = 0.0;            ///< fluid present at t = 0 [kg]
 
@@ -150,7 +149,6 @@ class FlowNetwork {
   std::vector<int> trial_fractures_, trial_nodes_, node_of_point_;
   std::vector<int> fracture_node_a_, fracture_node_b_;   // per trial fracture: node indices
   Eigen::VectorXd old_mass_, injected_, leak_volume_;    // per trial node
-  Eigen::VectorXd leak_length_;                          // per trial fracture: leaked volume per node
   Eigen::VectorXd floor_;                                // per trial end: lower bound of the aperture
   Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_;
   std::vector<double> point_state_;                      // committed fill state y per point [Pa]

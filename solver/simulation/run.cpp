@@ -47,16 +47,20 @@ struct OutputSeries {
   }
 };
 
+/// State of the flow network (zeros without one). Extent: open ends of fluid-filled
+/// joints, relative to the (first) injection point.
+const std::vector<std::string> kNetworkColumns{
+    "wetted_joints",  "injection_pressure_Pa", "injection_aperture_m", "open_xmin_m",    "open_xmax_m",
+    "open_ymin_m",    "open_ymax_m",           "mass_injected_kg",     "mass_stored_kg", "mass_leaked_kg",
+    "mass_balance_error"};
+
 std::vector<std::string> history_columns(const Model& model) {
   std::vector<std::string> columns{
       "step", "time_s", "open_close_iterations", "alm_iterations", "factorizations", "bonds_broken",
       "state_changes", "vertex_vertex_activations", "active_vertex_vertex", "open_joint_ends",
       "max_aperture_m", "max_penetration_m", "step_wall_s", "elapsed_wall_s",
-      // Fluid network (zeros without one). Extent: open ends of fluid-filled joints,
-      // relative to the (first) injection point.
-      "step_cuts", "fractures_wetted", "flow_newton_iterations", "flow_max_residual", "wetted_joints",
-      "injection_pressure_Pa", "injection_aperture_m", "open_xmin_m", "open_xmax_m", "open_ymin_m",
-      "open_ymax_m", "mass_injected_kg", "mass_stored_kg", "mass_leaked_kg", "mass_balance_error"};
+      "step_cuts", "fractures_wetted", "flow_newton_iterations", "flow_max_residual"};
+  columns.insert(columns.end(), kNetworkColumns.begin(), kNetworkColumns.end());
   for (const auto& probe : model.config.probes) {
     columns.push_back("probe_" + probe.name + "_pressure_Pa");
     columns.push_back("probe_" + probe.name + "_aperture_m");
@@ -82,7 +86,7 @@ std::vector<double> history_row(const Model& model, int step, double time_s, con
                           double(flow_counters.newton_iterations), flow_counters.max_relative_residual};
   const fluid::FlowNetwork* flow = model.flow.get();
   if (!flow) {
-    row.resize(row.size() + 11, 0.0);
+    row.resize(row.size() + kNetworkColumns.size(), 0.0);
   } else {
     const auto& m = system.mesh();
     const int inlet = model.injection_points.empty() ? -1 : model.injection_points.front();

@@ -75,20 +75,19 @@ TEST(FlowNetwork, ImplicitFlowBetweenTwoNodesMatchesClosedForm) {
 }
 
 TEST(FlowNetwork, CarterLeakOffIsChargedOverBothWalls) {
-  // Zero-width-change fracture at constant pressure-free state: leaked volume per node
-  // over [0, t] = C_L L 2 sqrt(t) (both walls, half the fracture per node).
+  // Rigid fracture wetted from t = 0: leaked volume per node over [0, t] is
+  // C_L L 2 sqrt(t) (both walls, half the fracture per node), two nodes.
   FluidProperties fluid = water();
   fluid.leak_off_coefficient_m_sqrt_s = 2e-5;
   FlowNetwork net = chain(1, 1.0, fluid);
   net.fill_initially(0, 1e-3);
   net.add_injection({0, 0.05, 0.0});
-  double leaked_volume = 0.0;
   for (int step = 0; step < 4; ++step) {
     net.begin_step(0.25);
     solve_rigid(net, 1e-3);
     net.commit();
   }
-  leaked_volume = 2.0 * 2e-5 * 1.0 * 2.0 * std::sqrt(1.0);
+  const double leaked_volume = 2.0 * 2e-5 * 1.0 * 2.0 * std::sqrt(1.0);
   // The leak is charged at each node's density, within 1e-4 of rho0 here.
   EXPECT_NEAR(net.leaked_mass(), 1000.0 * leaked_volume, 2e-3 * 1000.0 * leaked_volume);
   EXPECT_LT(net.mass_balance_error(), 1e-13);
