@@ -95,6 +95,7 @@ Eigen::VectorXd HydroMechanicalCoupling::solve(const dda::BlockSystem& system, c
   const fluid::FlowSolveStatistics fs = network_.solve(base, sensitivity_);
   ++stats_.flow_solves;
   stats_.newton_iterations += fs.newton_iterations;
+  stats_.newton_restarts += fs.restarts;
   stats_.max_relative_residual = std::max(stats_.max_relative_residual, fs.max_relative_residual);
   refresh_pressurised();
 

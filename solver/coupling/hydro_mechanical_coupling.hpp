@@ -24,6 +24,7 @@ namespace hfdda::coupling {
 struct CouplingStatistics {
   int flow_solves = 0;            ///< one per ALM iteration
   int newton_iterations = 0;
+  int newton_restarts = 0;        ///< flow solves that needed the flooded second start
   int fractures_wetted = 0;
   int max_nodes = 0;
   double max_relative_residual = 0.0;

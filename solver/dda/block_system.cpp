@@ -1,9 +1,12 @@
 #include "dda/block_system.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <limits>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <sstream>
@@ -32,6 +35,9 @@ constexpr double kGaussPoint[2] = {0.5 - 0.28867513459481287, 0.5 + 0.2886751345
 /// A contact flipping state this many times within one step is held in its state
 /// (cycle detection, seed 5.1) so that the open-close iterations can settle.
 constexpr int kMaxFlipsPerStep = 6;
+/// Largest correction, relative to the contact forces, accepted from stalled Augmented
+/// Lagrangian iterations (inconsistent loops of closed contacts, see solve_alm).
+constexpr double kAlmStallRatio = 1.0e-3;
 
 }  // namespace
 
@@ -371,6 +377,10 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
   Eigen::VectorXd d;
   const int max_iterations = settings_.augmented_lagrangian ? settings_.max_alm_iterations : 1;
   double error = 0.0, scale = 0.0;
+  int worst_contact = -1;
+  // Per closed contact: k g and k s of the previous iteration [N], for the stall test.
+  std::vector<double>& previous = alm_previous_corrections_;
+  previous.assign(2 * contacts_.size(), std::numeric_limits<double>::quiet_NaN());
   for (int it = 0; it < max_iterations; ++it) {
     load_vector_ = block_loads;
     for (const auto& c : contacts_) {
@@ -397,30 +407,64 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
     ++stats.alm_iterations;
     if (!settings_.augmented_lagrangian) break;
 
-    // Uzawa update of the multipliers (eq. 2.19); stop when the spring corrections are
-    // negligible against the contact forces themselves.
+    // Uzawa update of the multipliers (eq. 2.19); stop when the corrections are
+    // negligible against the contact forces themselves. A contact is one normal and
+    // one shear constraint: its springs (one per orientation at a joint end) are driven
+    // by their mean gap and mean shear. Once the two faces meet at an angle, the two
+    // springs' own gaps or shears differ by a geometric offset that no displacement
+    // removes, and per-spring updates would pull them apart for ever.
     error = 0.0, scale = 0.0;
+    double change = 0.0;  // largest change of a correction since the last iteration [N]
     for (const auto& c : contacts_) {
       if (c.state == ContactState::open) continue;
+      const double w = 1.0 / c.n_springs;
+      const double error_before = error;
+      double gap = 0.0, shear = 0.0;
       for (int k = 0; k < c.n_springs; ++k) {
         const auto& s = c.springs[k];
-        error = std::max(error, std::abs(kn * spring_gap(s, d)));
+        gap += w * spring_gap(s, d);
         scale = std::max(scale, std::abs(s.normal_multiplier_N));
         if (c.state == ContactState::locked) {
-          error = std::max(error, std::abs(ks * spring_shear(s, d)));
+          shear += w * spring_shear(s, d);
           scale = std::max(scale, std::abs(s.shear_multiplier_N));
         }
       }
+      error = std::max({error, std::abs(kn * gap), std::abs(ks * shear)});
+      const int ci = static_cast<int>(&c - contacts_.data());
+      if (error > error_before) worst_contact = ci;
+      const double normal_change = std::abs(kn * gap - previous[2 * ci]);
+      const double shear_change = std::abs(ks * shear - previous[2 * ci + 1]);
+      change = std::max({change, std::isnan(normal_change) ? HUGE_VAL : normal_change,
+                         std::isnan(shear_change) ? HUGE_VAL : shear_change});
+      previous[2 * ci] = kn * gap;
+      previous[2 * ci + 1] = ks * shear;
     }
     // Gaps cannot be resolved below the round-off of the coordinates they come from.
     const double round_off_force = std::max(kn, ks) * gap_round_off_m_;
     if (error <= settings_.alm_force_tolerance * scale + round_off_force) break;
+    // Stalled: the corrections no longer change, so the multiplier updates no longer
+    // move the blocks. Around a point where every joint is closed, the contacts form a
+    // loop of constraints; once some of them slipped and re-locked, the rotations of
+    // the blocks leave their reference points inconsistent by a few nanometres, and no
+    // displacement closes every gap. The remaining correction is that geometric
+    // mismatch: accept it if it is small against the contact forces (kAlmStallRatio),
+    // and count the stall.
+    if (it > 0 && change <= settings_.alm_force_tolerance * scale + round_off_force &&
+        error <= kAlmStallRatio * scale) {
+      ++stats.alm_stalls;
+      break;
+    }
     for (auto& c : contacts_) {
       if (c.state == ContactState::open) continue;
+      const double w = 1.0 / c.n_springs;
+      double gap = 0.0, shear = 0.0;
       for (int k = 0; k < c.n_springs; ++k) {
-        auto& s = c.springs[k];
-        s.normal_multiplier_N += kn * spring_gap(s, d);
-        if (c.state == ContactState::locked) s.shear_multiplier_N += ks * spring_shear(s, d);
+        gap += w * spring_gap(c.springs[k], d);
+        if (c.state == ContactState::locked) shear += w * spring_shear(c.springs[k], d);
+      }
+      for (int k = 0; k < c.n_springs; ++k) {
+        c.springs[k].normal_multiplier_N += kn * gap;
+        if (c.state == ContactState::locked) c.springs[k].shear_multiplier_N += ks * shear;
       }
     }
     if (it + 1 == max_iterations) {
@@ -429,6 +473,12 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
       msg << "Augmented Lagrangian iterations did not converge in " << max_iterations
           << " iterations: largest spring force correction " << error << " N against contact forces of "
           << scale << " N (tolerance " << settings_.alm_force_tolerance << ")";
+      if (worst_contact >= 0) {
+        const Contact& c = contacts_[worst_contact];
+        const Vec2& at = mesh_.points[c.point];
+        msg << "; largest at the " << to_string(c.state) << " contact of joint " << c.joint << " at point "
+            << c.point << " (" << at.x() << ", " << at.y() << ") m";
+      }
       throw ConvergenceError(msg.str());
     }
   }
@@ -448,7 +498,9 @@ void BlockSystem::reset_shear_reference(VertexEdgeSpring& s, const Eigen::Vector
   const Vec2 p1 = displaced(s.vertex_block, corner(s.vertex_block, s.vertex_corner), d);
   const Vec2 p2 = displaced(s.edge_block, corner(s.edge_block, s.edge_corner), d);
   const Vec2 p3 = displaced(s.edge_block, corner(s.edge_block, (s.edge_corner + 1) % n_corners(s.edge_block)), d);
-  s.reference_ratio = std::clamp((p1 - p2).dot(p3 - p2) / (p3 - p2).squaredNorm(), 0.0, 1.0);
+  // Not clamped to the edge: a corner that closes just beyond the end of the edge (a
+  // joint end after opening) would otherwise start with a shear offset.
+  s.reference_ratio = (p1 - p2).dot(p3 - p2) / (p3 - p2).squaredNorm();
   s.shear_multiplier_N = 0.0;
 }
 
@@ -467,6 +519,28 @@ bool BlockSystem::may_fail(const Contact& c) const {
   for (int k = contacts_at_point_offset_[c.point]; k < contacts_at_point_offset_[c.point + 1]; ++k) {
     const Contact& n = contacts_[contacts_at_point_[k]];
     if (&n != &c && n.state == ContactState::open) return true;
+  }
+  return false;
+}
+
+bool BlockSystem::joined_by_closed_joints(int point, int block_a, int block_c,
+                                          const std::vector<ContactState>& joint_state) const {
+  // Breadth-first search over the blocks around the point (at most a dozen).
+  std::array<int, 32> reached{};
+  int n_reached = 0, next = 0;
+  reached[n_reached++] = block_a;
+  while (next < n_reached) {
+    const int from = reached[next++];
+    for (int k = contacts_at_point_offset_[point]; k < contacts_at_point_offset_[point + 1]; ++k) {
+      const Contact& j = contacts_[contacts_at_point_[k]];
+      if (joint_state[contacts_at_point_[k]] == ContactState::open) continue;
+      const int a = j.springs[0].vertex_block, b = j.springs[0].edge_block;
+      const int to = a == from ? b : b == from ? a : -1;
+      if (to < 0 || std::find(reached.begin(), reached.begin() + n_reached, to) != reached.begin() + n_reached) continue;
+      if (to == block_c) return true;
+      if (n_reached == static_cast<int>(reached.size())) return false;
+      reached[n_reached++] = to;
+    }
   }
   return false;
 }
@@ -507,14 +581,9 @@ int BlockSystem::update_states(const Eigen::VectorXd& d, StepStatistics& stats) 
   std::vector<Change> changes;
   std::vector<std::pair<double, int>> tension_failures;  // (normal stress, contact)
 
-  for (int ci = 0; ci < static_cast<int>(contacts_.size()); ++ci) {
+  // Joint contacts and active vertex-vertex springs: the open-close rules.
+  auto check_contact = [&](int ci) {
     Contact& c = contacts_[ci];
-    if (c.joint < 0 && !c.vertex_vertex_active) {
-      // Vertex-vertex contacts are frictionless normal springs (state "sliding").
-      if (auto s = vertex_vertex_spring(c, d, stats.max_penetration_m))
-        changes.push_back({ci, ContactState::sliding, false, s});
-      continue;
-    }
     const double w = 1.0 / c.n_springs;
     double gap = 0.0, normal = 0.0, shear = 0.0;
     for (int k = 0; k < c.n_springs; ++k) {
@@ -557,7 +626,9 @@ int BlockSystem::update_states(const Eigen::VectorXd& d, StepStatistics& stats) 
         break;
       }
     }
-  }
+  };
+  const int n_joint_contacts = 2 * static_cast<int>(mesh_.joints.size());
+  for (int ci = 0; ci < n_joint_contacts; ++ci) check_contact(ci);
 
   // Seed 2.3 (iii): of the bonds over their tensile strength, only the most stressed
   // fails (all within the tie tolerance of it fail together).
@@ -565,6 +636,29 @@ int BlockSystem::update_states(const Eigen::VectorXd& d, StepStatistics& stats) 
     const double top = std::max_element(tension_failures.begin(), tension_failures.end())->first;
     for (auto [stress, ci] : tension_failures)
       if (stress >= top - settings_.tie_tolerance * std::abs(top)) changes.push_back({ci, ContactState::open, true, std::nullopt});
+  }
+
+  // Vertex-vertex contacts (frictionless normal springs, state "sliding") come last,
+  // judged on the joint states this round leads to. Two blocks joined at the point by
+  // a chain of closed joint contacts cannot penetrate each other there (the wedges
+  // between them are in contact): a vertex-vertex spring would be a redundant
+  // constraint with its own geometric offset, which the Augmented Lagrangian
+  // iterations cannot satisfy.
+  next_joint_state_.resize(n_joint_contacts);
+  for (int ci = 0; ci < n_joint_contacts; ++ci) next_joint_state_[ci] = contacts_[ci].state;
+  for (const Change& ch : changes) next_joint_state_[ch.contact] = ch.to;
+  for (int ci = n_joint_contacts; ci < static_cast<int>(contacts_.size()); ++ci) {
+    Contact& c = contacts_[ci];
+    const bool joined = joined_by_closed_joints(c.point, c.block_a, c.block_c, next_joint_state_);
+    if (!c.vertex_vertex_active) {
+      if (!joined)
+        if (auto s = vertex_vertex_spring(c, d, stats.max_penetration_m))
+          changes.push_back({ci, ContactState::sliding, false, s});
+    } else if (joined) {
+      changes.push_back({ci, ContactState::open, false, std::nullopt});
+    } else {
+      check_contact(ci);
+    }
   }
 
   int applied = 0;

@@ -50,6 +50,7 @@ struct MechanicsSettings {
 struct StepStatistics {
   int open_close_iterations = 0;
   int alm_iterations = 0;        ///< linear solves in the step
+  int alm_stalls = 0;            ///< ALM solves ended by the stall test (inconsistent contact loops)
   int factorizations = 0;
   int coupled_state_changes = 0;  ///< e.g. fractures newly wetted by the fluid
   int bonds_broken = 0;
@@ -179,6 +180,10 @@ class BlockSystem {
   double spring_shear(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   int update_states(const Eigen::VectorXd& d, StepStatistics& stats);
   bool may_fail(const Contact& c) const;
+  /// Blocks a and c are joined at the point by a chain of joint contacts that are
+  /// closed in `joint_state` (one state per joint contact).
+  bool joined_by_closed_joints(int point, int block_a, int block_c,
+                               const std::vector<ContactState>& joint_state) const;
   /// Spring to activate if a corner of a vertex-vertex candidate penetrates deeper than
   /// the activation tolerance (seed 2.3 vi); std::nullopt otherwise.
   std::optional<VertexEdgeSpring> vertex_vertex_spring(const Contact& c, const Eigen::VectorXd& d,
@@ -219,6 +224,8 @@ class BlockSystem {
   std::string last_change_;      // first state change of the last open-close check
   double gap_round_off_m_ = 0.0;  // gaps below this are round-off of the coordinates
   std::vector<int> flips_;
+  std::vector<ContactState> next_joint_state_;  ///< update_states: joint states after this round
+  std::vector<double> alm_previous_corrections_;  ///< solve_alm: k g, k s per contact, last iteration
   std::vector<std::pair<int, int>> couplings_;  // block pairs in K's pattern
   bool pattern_changed_ = false;  // state changes of each contact within the current step
 

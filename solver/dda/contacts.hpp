@@ -32,7 +32,7 @@ struct VertexEdgeSpring {
   int vertex_block = -1, vertex_corner = -1;
   int edge_block = -1, edge_corner = -1;
   int slot = -1;                      ///< coupling slot of (vertex_block, edge_block) in K
-  double reference_ratio = 0.0;       ///< shear reference point on the edge, 0..1
+  double reference_ratio = 0.0;       ///< shear reference point on the edge's line (0, 1: its ends)
   double normal_multiplier_N = 0.0;   ///< ALM normal force, tension positive [N per m thickness]
   double shear_multiplier_N = 0.0;    ///< ALM shear force [N per m thickness]
 

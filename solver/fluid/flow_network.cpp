@@ -14,6 +14,8 @@ namespace {
 constexpr double kFloorRounding = 0.01;
 /// Half-width of the rounded corner of the pressure max(y, 0) [Pa].
 constexpr double kPressureRounding = 1.0e3;
+/// Bounds of the fill scale P of a partly filled node [Pa]; the upper one is K_f.
+constexpr double kMinFillScale = 10.0 * kPressureRounding;
 }  // namespace
 
 struct FlowNetwork::Evaluation {
@@ -88,7 +90,7 @@ bool FlowNetwork::trial_pressurised(int point) const {
 void FlowNetwork::rebuild_trial_topology() {
   // Warm start: keep the trial pressures of the current nodes.
   for (std::size_t i = 0; i < trial_nodes_.size() && static_cast<Eigen::Index>(i) < unknowns_.size(); ++i)
-    guess_state_[trial_nodes_[i]] = unknowns_[i];
+    guess_state_[trial_nodes_[i]] = state_of_unknown(static_cast<int>(i));
   for (int point : trial_nodes_) node_of_point_[point] = -1;
   trial_fractures_.clear();
   trial_nodes_.clear();
@@ -152,11 +154,13 @@ void FlowNetwork::rebuild_trial_topology() {
     }
   }
   // Warm start from the last state of each node; a node the fluid reaches for the
-  // first time starts empty (fill state rho = 0).
+  // first time starts empty (fill fraction 0).
   unknowns_.setZero(n);
+  fill_scale_.setConstant(n, fluid_.bulk_modulus_Pa);
   for (int i = 0; i < n; ++i) {
     const int point = trial_nodes_[i];
-    unknowns_[i] = reached_[point] ? guess_state_[point] : empty_state();
+    const double state = reached_[point] ? guess_state_[point] : -1.0;
+    unknowns_[i] = state >= 0.0 ? state : state * fill_scale_[i];
   }
   pressure_ = unknowns_.cwiseMax(0.0);
   aperture_trial_.setZero(2 * nf);
@@ -171,10 +175,11 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
                            Evaluation& out, bool with_jacobian) const {
   const int n = static_cast<int>(trial_nodes_.size());
   const int nf = static_cast<int>(trial_fractures_.size());
-  // The unknown y of a node is its fill state: the stored mass is rho(y) V for every
-  // y (eq. 2.6 continued below zero pressure), while the pressure that drives the flow
-  // and loads the rock is max(y, 0), its corner rounded within kPressureRounding.
-  // y < 0 is a zero-pressure node holding less than rho(0) V (seed 2.1, Figure 2.2).
+  // The unknown y of a node is its fill state: for y >= 0 the node is full at pressure
+  // y and stores rho(y) V (eq. 2.6); for y < 0 it is a zero-pressure node (seed 2.1,
+  // Figure 2.2) filled to the fraction 1 + y / P, storing rho(0) V (1 + y / P). The
+  // pressure that drives the flow and loads the rock is max(y, 0), its corner rounded
+  // within kPressureRounding. P (fill_scale_) only shapes the path Newton takes.
   out.pressure.resize(n);
   out.pressure_slope.resize(n);
   for (int i = 0; i < n; ++i) {
@@ -216,7 +221,7 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
   out.storage.resize(n);
   out.residual.resize(n);
   for (int i = 0; i < n; ++i) {
-    out.storage[i] = fluid_.density(x[i]) * out.volume[i];
+    out.storage[i] = fill_density(x[i], i) * out.volume[i];
     out.residual[i] = out.storage[i] - old_mass_[i] + out.density[i] * leak_volume_[i] - injected_[i];
   }
   out.eta.resize(nf);
@@ -243,7 +248,7 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     for (int end = 0; end < 2; ++end) {
       const int i = end == 0 ? fracture_node_a_[k] : fracture_node_b_[k];
       if (out.slope[2 * k + end] > 0.0)
-        jac.row(i) += fluid_.density(x[i]) * half * out.slope[2 * k + end] * s.row(2 * k + end);
+        jac.row(i) += fill_density(x[i], i) * half * out.slope[2 * k + end] * s.row(2 * k + end);
     }
   }
   Eigen::RowVectorXd deta(n);
@@ -266,19 +271,62 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     jac(b, a) -= dt_s_ * out.eta[k];
   }
   for (int i = 0; i < n; ++i) jac.col(i) *= out.pressure_slope[i];
-  for (int i = 0; i < n; ++i) jac(i, i) += drho * out.volume[i];  // storage rho(y) V
+  for (int i = 0; i < n; ++i) jac(i, i) += fill_density_slope(x[i], i) * out.volume[i];  // storage
 }
 
-void FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats) {
+double FlowNetwork::fill_density(double y, int i) const {
+  return y >= 0.0 ? fluid_.density(y) : fluid_.density(0.0) * (1.0 + y / fill_scale_[i]);
+}
+
+double FlowNetwork::fill_density_slope(double y, int i) const {
+  return y >= 0.0 ? fluid_.density_derivative() : fluid_.density(0.0) / fill_scale_[i];
+}
+
+double FlowNetwork::state_of_unknown(int i) const {
+  const double y = unknowns_[i];
+  return y >= 0.0 ? y : y / fill_scale_[i];
+}
+
+void FlowNetwork::rescale_partly_filled_nodes(Evaluation& ev) {
+  // Newton crosses the corner of max(y, 0) well only if the mass balance has about the
+  // same slope on both sides of it: the excess mass a full step predicts for a node
+  // that fills up then turns into a pressure through the node's conductance, not
+  // through the fluid's bulk modulus (the stagnation seen at growing tips). So P is
+  // set to rho(0) V / g with g = dt sum eta + rho' V, the slope a full node would have.
+  // The fill fraction 1 + y / P is kept: the residual does not change, only the
+  // storage term on the diagonal of the Jacobian of a node at zero pressure.
+  const int n = static_cast<int>(trial_nodes_.size());
+  Eigen::VectorXd conductance = fluid_.density_derivative() * ev.volume;
+  for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
+    conductance[fracture_node_a_[k]] += dt_s_ * ev.eta[k];
+    conductance[fracture_node_b_[k]] += dt_s_ * ev.eta[k];
+  }
+  const double rho0 = fluid_.density(0.0);
+  for (int i = 0; i < n; ++i) {
+    double& y = unknowns_[i];
+    if (y > -kPressureRounding || !(ev.volume[i] > 0.0) || !(conductance[i] > 0.0)) continue;
+    const double deficit = -y / fill_scale_[i];  // 1 - fill fraction, > 0
+    // Keep y below the rounded corner, so that the pressure stays exactly zero.
+    const double scale = std::clamp(rho0 * ev.volume[i] / conductance[i],
+                                    std::max(kMinFillScale, kPressureRounding / deficit), fluid_.bulk_modulus_Pa);
+    if (scale == fill_scale_[i]) continue;
+    ev.jacobian(i, i) += rho0 * ev.volume[i] * (1.0 / scale - 1.0 / fill_scale_[i]);
+    fill_scale_[i] = scale;
+    y = -deficit * scale;
+  }
+}
+
+bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
+                         NewtonProgress& progress) {
   const int n = static_cast<int>(trial_nodes_.size());
   const double mass_scale = std::max(old_mass_.sum() + injected_.sum(), 1e-300);
   const double tol = settings_.tolerance;
   Evaluation ev, trial;
   Eigen::VectorXd& x = unknowns_;
-  double max_p = 0.0, residual = 0.0, change = 0.0;
   for (int it = 0; it < settings_.max_newton_iterations; ++it) {
     evaluate(x, base, s, ev, true);
-    residual = ev.residual.cwiseAbs().maxCoeff() / mass_scale;
+    rescale_partly_filled_nodes(ev);
+    progress.residual = ev.residual.cwiseAbs().maxCoeff() / mass_scale;
     const Eigen::VectorXd dx = ev.jacobian.partialPivLu().solve(-ev.residual);
     if (!dx.allFinite()) throw ConvergenceError("fluid flow: singular mass-balance Jacobian");
     ++stats.newton_iterations;
@@ -291,21 +339,49 @@ void FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
       if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit || merit <= tol * mass_scale) break;
     }
     x += alpha * dx;
-    max_p = 0.0, change = 0.0;
+    progress.max_pressure = 0.0, progress.change = 0.0;
     for (int i = 0; i < n; ++i) {
-      max_p = std::max(max_p, std::abs(x[i]));
-      change = std::max(change, std::abs(alpha * dx[i]));
+      progress.max_pressure = std::max(progress.max_pressure, std::abs(x[i]));
+      progress.change = std::max(progress.change, std::abs(alpha * dx[i]));
     }
     // Relative pressure change and mass residual (NOTES erratum 2); 1 mPa absolute floor.
-    if (residual <= tol && change <= tol * max_p + 1e-3) {
-      stats.max_relative_residual = std::max(stats.max_relative_residual, residual);
-      return;
+    if (progress.residual <= tol && progress.change <= tol * progress.max_pressure + 1e-3) {
+      stats.max_relative_residual = std::max(stats.max_relative_residual, progress.residual);
+      return true;
     }
+  }
+  return false;
+}
+
+void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
+                                     FlowSolveStatistics& stats) {
+  const Eigen::VectorXd start = unknowns_, start_scale = fill_scale_;
+  NewtonProgress progress;
+  if (newton(base, s, stats, progress)) return;
+  // Second start. A node that is not yet pressurised but takes in more fluid than it
+  // can hold must end up near the pressure of the node feeding it. On the way there its
+  // mass balance is not monotone: its own pressure opens the fracture behind it and
+  // draws more fluid in, so Newton from the empty side can stall at a local minimum of
+  // the residual (seen at new tips of inclined fractures). Start such nodes at the
+  // largest pressure of their neighbours instead.
+  unknowns_ = start;
+  fill_scale_ = start_scale;
+  Eigen::VectorXd flooded = start;
+  for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
+    const int a = fracture_node_a_[k], b = fracture_node_b_[k];
+    if (start[a] <= 0.0) flooded[a] = std::max(flooded[a], start[b]);
+    if (start[b] <= 0.0) flooded[b] = std::max(flooded[b], start[a]);
+  }
+  if (flooded != start) {
+    ++stats.restarts;
+    unknowns_ = flooded;
+    if (newton(base, s, stats, progress)) return;
   }
   std::ostringstream msg;
   msg << "fluid flow: Newton iterations did not converge in " << settings_.max_newton_iterations
-      << " iterations (mass residual " << residual << " of the stored mass, last pressure change " << change
-      << " Pa against pressures up to " << max_p << " Pa, " << n << " nodes)";
+      << " iterations (mass residual " << progress.residual << " of the stored mass, last pressure change "
+      << progress.change << " Pa against pressures up to " << progress.max_pressure << " Pa, "
+      << trial_nodes_.size() << " nodes)";
   throw ConvergenceError(msg.str());
 }
 
@@ -317,7 +393,7 @@ FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, const Eigen:
   FlowSolveStatistics stats;
   if (n == 0) return stats;
   Evaluation ev;
-  newton(base, s, stats);
+  solve_mass_balance(base, s, stats);
   evaluate(unknowns_, base, s, ev, false);
   // Mass-conservative update: the stored mass is what flowed in, to round-off.
   pressure_ = ev.pressure;
@@ -344,7 +420,7 @@ void FlowNetwork::commit() {
     const int point = trial_nodes_[i];
     point_pressure_[point] = pressure_[i];
     point_mass_[point] = mass_new_[i];
-    point_state_[point] = unknowns_[i];
+    point_state_[point] = state_of_unknown(i);
     reached_[point] = 1;
   }
   injected_kg_ += injected_.sum();

@@ -18,9 +18,9 @@
 //
 // A node whose pressure would be negative becomes a zero-pressure node: p = 0 and its
 // stored mass is solved for instead (seed 2.1, Figure 2.2). Both kinds share one
-// unknown per node, the fill state y: the node stores rho(y) V (eq. 2.6 continued
-// below zero), and the pressure acting on flow and rock is max(y, 0). A partly filled
-// node has y < 0; no switching between node kinds is needed.
+// unknown per node, the fill state y: y >= 0 is the pressure of a full node, y < 0 a
+// node at zero pressure filled to the fraction 1 + y / P; the pressure acting on flow
+// and rock is max(y, 0). No switching between node kinds is needed.
 //
 // Apertures come from the mechanics as an affine model of the nodal pressures,
 // w_e(p) = base_e + S_e . p (exact for the linear block system once its contacts are
@@ -70,6 +70,7 @@ struct Injection {
 
 struct FlowSolveStatistics {
   int newton_iterations = 0;
+  int restarts = 0;                    ///< Newton restarted from a flooded guess
   int zero_pressure_nodes = 0;
   double max_relative_residual = 0.0;  ///< max |mass residual| / mass scale at convergence
 };
@@ -127,7 +128,21 @@ class FlowNetwork {
   void rebuild_trial_topology();
   void evaluate(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
                 Evaluation& out, bool with_jacobian) const;
-  void newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats);
+  struct NewtonProgress {
+    double residual = 0.0, change = 0.0, max_pressure = 0.0;  // of the last iteration
+  };
+  /// Newton from the current unknowns; false if it did not converge.
+  bool newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
+              NewtonProgress& progress);
+  /// Newton, restarted once from a flooded guess if needed; throws ConvergenceError.
+  void solve_mass_balance(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats);
+  /// Stored mass per volume of a node in fill state y, and its derivative in y.
+  double fill_density(double y, int node) const;
+  double fill_density_slope(double y, int node) const;
+  /// Committed form of a trial node's fill state: the pressure [Pa] if full, else the
+  /// fill fraction minus one, in [-1, 0) (independent of the fill scale).
+  double state_of_unknown(int node) const;
+  void rescale_partly_filled_nodes(Evaluation& ev);
 
   std::vector<Fracture> fractures_;
   FluidProperties fluid_;
@@ -151,10 +166,10 @@ class FlowNetwork {
   Eigen::VectorXd old_mass_, injected_, leak_volume_;    // per trial node
   Eigen::VectorXd floor_;                                // per trial end: lower bound of the aperture
   Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_;
-  std::vector<double> point_state_;                      // committed fill state y per point [Pa]
+  Eigen::VectorXd fill_scale_;                           // per trial node: P of the fill state [Pa]
+  std::vector<double> point_state_;                      // per point: pressure [Pa] if full, else fill fraction - 1
   std::vector<char> reached_;                            // the fluid has been at the point
   std::vector<double> guess_state_;                      // per point, warm start across topology changes
-  double empty_state() const { return fluid_.reference_pressure_Pa - fluid_.bulk_modulus_Pa; }
 };
 
 }  // namespace hfdda::fluid

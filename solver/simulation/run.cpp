@@ -56,10 +56,10 @@ const std::vector<std::string> kNetworkColumns{
 
 std::vector<std::string> history_columns(const Model& model) {
   std::vector<std::string> columns{
-      "step", "time_s", "open_close_iterations", "alm_iterations", "factorizations", "bonds_broken",
+      "step", "time_s", "open_close_iterations", "alm_iterations", "alm_stalls", "factorizations", "bonds_broken",
       "state_changes", "vertex_vertex_activations", "active_vertex_vertex", "open_joint_ends",
       "max_aperture_m", "max_penetration_m", "step_wall_s", "elapsed_wall_s",
-      "step_cuts", "fractures_wetted", "flow_newton_iterations", "flow_max_residual"};
+      "step_cuts", "fractures_wetted", "flow_newton_iterations", "flow_newton_restarts", "flow_max_residual"};
   columns.insert(columns.end(), kNetworkColumns.begin(), kNetworkColumns.end());
   for (const auto& probe : model.config.probes) {
     columns.push_back("probe_" + probe.name + "_pressure_Pa");
@@ -79,11 +79,12 @@ std::vector<double> history_row(const Model& model, int step, double time_s, con
       max_aperture = std::max(max_aperture, system.joint_gap(static_cast<int>(j), end));
     }
   std::vector<double> row{double(step), time_s, double(st.open_close_iterations), double(st.alm_iterations),
-                          double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
+                          double(st.alm_stalls), double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
                           double(st.vertex_vertex_activations), double(st.active_vertex_vertex), double(open_ends),
                           max_aperture, st.max_penetration_m, st.seconds_total, elapsed,
                           double(flow_counters.step_cuts), double(flow_counters.fractures_wetted),
-                          double(flow_counters.newton_iterations), flow_counters.max_relative_residual};
+                          double(flow_counters.newton_iterations), double(flow_counters.newton_restarts),
+                          flow_counters.max_relative_residual};
   const fluid::FlowNetwork* flow = model.flow.get();
   if (!flow) {
     row.resize(row.size() + kNetworkColumns.size(), 0.0);
@@ -119,6 +120,7 @@ std::vector<double> history_row(const Model& model, int step, double time_s, con
 void add_statistics(dda::StepStatistics& total, const dda::StepStatistics& s) {
   total.open_close_iterations += s.open_close_iterations;
   total.alm_iterations += s.alm_iterations;
+  total.alm_stalls += s.alm_stalls;
   total.factorizations += s.factorizations;
   total.coupled_state_changes += s.coupled_state_changes;
   total.bonds_broken += s.bonds_broken;
@@ -143,6 +145,7 @@ void advance(Model& model, double dt_s, int cuts_left, dda::StepStatistics& stat
       const auto& cs = model.coupling->statistics();
       counters.fractures_wetted += cs.fractures_wetted;
       counters.newton_iterations += cs.newton_iterations;
+      counters.newton_restarts += cs.newton_restarts;
       counters.max_relative_residual = std::max(counters.max_relative_residual, cs.max_relative_residual);
     }
   } catch (const ConvergenceError& e) {
@@ -174,6 +177,7 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
   j["solver"] = {{"contact_method", system.settings().augmented_lagrangian ? "augmented_lagrangian" : "penalty"},
                  {"open_close_iterations", r.totals.open_close_iterations},
                  {"alm_iterations", r.totals.alm_iterations},
+                 {"alm_stalls", r.totals.alm_stalls},
                  {"factorizations", r.totals.factorizations},
                  {"bonds_broken", r.totals.bonds_broken},
                  {"vertex_vertex_activations", r.totals.vertex_vertex_activations},
@@ -211,6 +215,7 @@ RunResult run(Model& model, const RunOptions& options) {
     tot.steps = step;
     tot.open_close_iterations += st.open_close_iterations;
     tot.alm_iterations += st.alm_iterations;
+    tot.alm_stalls += st.alm_stalls;
     tot.factorizations += st.factorizations;
     tot.bonds_broken += st.bonds_broken;
     tot.vertex_vertex_activations += st.vertex_vertex_activations;

@@ -17,7 +17,7 @@ struct RunOptions {
 /// Totals over the run (also written to summary.json).
 struct RunTotals {
   int steps = 0;
-  int open_close_iterations = 0, alm_iterations = 0, factorizations = 0;
+  int open_close_iterations = 0, alm_iterations = 0, alm_stalls = 0, factorizations = 0;
   int bonds_broken = 0, vertex_vertex_activations = 0, max_active_vertex_vertex = 0;
   double seconds_assembly = 0.0, seconds_factorization = 0.0, seconds_solve = 0.0;
 };
@@ -32,7 +32,7 @@ struct RunResult {
 
 /// Per-step counters of the fluid coupling, summed over the sub-steps of a cut step.
 struct FlowStepCounters {
-  int fractures_wetted = 0, newton_iterations = 0, step_cuts = 0;
+  int fractures_wetted = 0, newton_iterations = 0, newton_restarts = 0, step_cuts = 0;
   double max_relative_residual = 0.0;
 };
 
