@@ -35,9 +35,10 @@ constexpr double kGaussPoint[2] = {0.5 - 0.28867513459481287, 0.5 + 0.2886751345
 /// A contact flipping state this many times within one step is held in its state
 /// (cycle detection, seed 5.1) so that the open-close iterations can settle.
 constexpr int kMaxFlipsPerStep = 6;
-/// Largest correction, relative to the contact forces, accepted from stalled Augmented
-/// Lagrangian iterations (inconsistent loops of closed contacts, see solve_alm).
-constexpr double kAlmStallRatio = 1.0e-3;
+/// Largest gap or shear left by stalled Augmented Lagrangian iterations (inconsistent
+/// loops of closed contacts, see solve_alm), relative to the contact's length: 1e-6 is
+/// well below the elastic strains of rock under stress (1e-4 at 2.5 MPa and 25 GPa).
+constexpr double kAlmStallMismatch = 1.0e-6;
 
 }  // namespace
 
@@ -414,7 +415,8 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
     // springs' own gaps or shears differ by a geometric offset that no displacement
     // removes, and per-spring updates would pull them apart for ever.
     error = 0.0, scale = 0.0;
-    double change = 0.0;  // largest change of a correction since the last iteration [N]
+    double change = 0.0;    // largest change of a correction since the last iteration [N]
+    double mismatch = 0.0;  // largest |gap| or |shear| over the contact's length
     for (const auto& c : contacts_) {
       if (c.state == ContactState::open) continue;
       const double w = 1.0 / c.n_springs;
@@ -430,6 +432,8 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
         }
       }
       error = std::max({error, std::abs(kn * gap), std::abs(ks * shear)});
+      const double length = c.joint >= 0 ? c.length_m : c.springs[0].edge_length_m;
+      mismatch = std::max(mismatch, std::max(std::abs(gap), std::abs(shear)) / length);
       const int ci = static_cast<int>(&c - contacts_.data());
       if (error > error_before) worst_contact = ci;
       const double normal_change = std::abs(kn * gap - previous[2 * ci]);
@@ -446,12 +450,13 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
     // move the blocks. Around a point where every joint is closed, the contacts form a
     // loop of constraints; once some of them slipped and re-locked, the rotations of
     // the blocks leave their reference points inconsistent by a few nanometres, and no
-    // displacement closes every gap. The remaining correction is that geometric
-    // mismatch: accept it if it is small against the contact forces (kAlmStallRatio),
-    // and count the stall.
+    // displacement closes every gap. The remaining gaps are that geometric mismatch:
+    // accept them if they are small against the contacts' lengths (kAlmStallMismatch),
+    // and count the stall and its mismatch.
     if (it > 0 && change <= settings_.alm_force_tolerance * scale + round_off_force &&
-        error <= kAlmStallRatio * scale) {
+        mismatch <= kAlmStallMismatch) {
       ++stats.alm_stalls;
+      stats.max_alm_stall_mismatch = std::max(stats.max_alm_stall_mismatch, mismatch);
       break;
     }
     for (auto& c : contacts_) {

@@ -51,6 +51,7 @@ struct StepStatistics {
   int open_close_iterations = 0;
   int alm_iterations = 0;        ///< linear solves in the step
   int alm_stalls = 0;            ///< ALM solves ended by the stall test (inconsistent contact loops)
+  double max_alm_stall_mismatch = 0.0;  ///< largest gap / contact length accepted at a stall
   int factorizations = 0;
   int coupled_state_changes = 0;  ///< e.g. fractures newly wetted by the fluid
   int bonds_broken = 0;

@@ -56,7 +56,7 @@ const std::vector<std::string> kNetworkColumns{
 
 std::vector<std::string> history_columns(const Model& model) {
   std::vector<std::string> columns{
-      "step", "time_s", "open_close_iterations", "alm_iterations", "alm_stalls", "factorizations", "bonds_broken",
+      "step", "time_s", "open_close_iterations", "alm_iterations", "alm_stalls", "alm_stall_mismatch", "factorizations", "bonds_broken",
       "state_changes", "vertex_vertex_activations", "active_vertex_vertex", "open_joint_ends",
       "max_aperture_m", "max_penetration_m", "step_wall_s", "elapsed_wall_s",
       "step_cuts", "fractures_wetted", "flow_newton_iterations", "flow_newton_restarts", "flow_max_residual"};
@@ -79,7 +79,7 @@ std::vector<double> history_row(const Model& model, int step, double time_s, con
       max_aperture = std::max(max_aperture, system.joint_gap(static_cast<int>(j), end));
     }
   std::vector<double> row{double(step), time_s, double(st.open_close_iterations), double(st.alm_iterations),
-                          double(st.alm_stalls), double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
+                          double(st.alm_stalls), st.max_alm_stall_mismatch, double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
                           double(st.vertex_vertex_activations), double(st.active_vertex_vertex), double(open_ends),
                           max_aperture, st.max_penetration_m, st.seconds_total, elapsed,
                           double(flow_counters.step_cuts), double(flow_counters.fractures_wetted),
@@ -121,6 +121,7 @@ void add_statistics(dda::StepStatistics& total, const dda::StepStatistics& s) {
   total.open_close_iterations += s.open_close_iterations;
   total.alm_iterations += s.alm_iterations;
   total.alm_stalls += s.alm_stalls;
+  total.max_alm_stall_mismatch = std::max(total.max_alm_stall_mismatch, s.max_alm_stall_mismatch);
   total.factorizations += s.factorizations;
   total.coupled_state_changes += s.coupled_state_changes;
   total.bonds_broken += s.bonds_broken;

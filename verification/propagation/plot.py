@@ -37,7 +37,8 @@ PATTERNS = {  # figure -> [(variant, panel letter)]
          [("bimaterial", "")]),
     ],
     "quick": [
-        ("propagation_quick.png", "Quick tier: free propagation, dsigma = 0 (seed Fig. 3.13 A)", [("free_s0", "")]),
+        ("propagation_quick.png", "Quick tier: free propagation at dsigma = 0 and 5 MPa, weaker -45 deg diagonals",
+         [("free_s0", "A"), ("free_s5", "B"), ("weak_diagonal", "C")]),
     ],
 }
 
