@@ -644,17 +644,19 @@ int BlockSystem::update_states(const Eigen::VectorXd& d, StepStatistics& stats) 
   }
 
   // Vertex-vertex contacts (frictionless normal springs, state "sliding") come last,
-  // judged on the joint states this round leads to. Two blocks joined at the point by
-  // a chain of closed joint contacts cannot penetrate each other there (the wedges
-  // between them are in contact): a vertex-vertex spring would be a redundant
-  // constraint with its own geometric offset, which the Augmented Lagrangian
-  // iterations cannot satisfy.
+  // judged on the joint states this round leads to. With the Augmented Lagrangian, two
+  // blocks joined at the point by a chain of closed joint contacts cannot penetrate
+  // each other there (the wedges between them are in contact and their gaps are driven
+  // to zero): a vertex-vertex spring would be a redundant constraint with its own
+  // geometric offset, which the iterations cannot satisfy. With penalty springs the
+  // joints do overlap, and the seed's vertex-vertex springs (3.1) stay.
   next_joint_state_.resize(n_joint_contacts);
   for (int ci = 0; ci < n_joint_contacts; ++ci) next_joint_state_[ci] = contacts_[ci].state;
   for (const Change& ch : changes) next_joint_state_[ch.contact] = ch.to;
   for (int ci = n_joint_contacts; ci < static_cast<int>(contacts_.size()); ++ci) {
     Contact& c = contacts_[ci];
-    const bool joined = joined_by_closed_joints(c.point, c.block_a, c.block_c, next_joint_state_);
+    const bool joined = settings_.augmented_lagrangian &&
+                        joined_by_closed_joints(c.point, c.block_a, c.block_c, next_joint_state_);
     if (!c.vertex_vertex_active) {
       if (!joined)
         if (auto s = vertex_vertex_spring(c, d, stats.max_penetration_m))

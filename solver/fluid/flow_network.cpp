@@ -222,7 +222,7 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
   out.residual.resize(n);
   for (int i = 0; i < n; ++i) {
     out.storage[i] = fill_density(x[i], i) * out.volume[i];
-    out.residual[i] = out.storage[i] - old_mass_[i] + out.density[i] * leak_volume_[i] - injected_[i];
+    out.residual[i] = out.storage[i] - old_mass_[i] + homotopy_ * (out.density[i] * leak_volume_[i] - injected_[i]);
   }
   out.eta.resize(nf);
   const double mu12 = 12.0 * fluid_.viscosity_Pa_s;
@@ -232,7 +232,7 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     const double rho = 0.5 * (out.density[a] + out.density[b]);
     const double w = 0.5 * (out.aperture[2 * k] + out.aperture[2 * k + 1]);
     out.eta[k] = rho * w * w * w / (mu12 * length);  // eq. 2.2
-    const double outflow = dt_s_ * out.eta[k] * (out.pressure[a] - out.pressure[b]);
+    const double outflow = flow_dt() * out.eta[k] * (out.pressure[a] - out.pressure[b]);
     out.residual[a] += outflow;
     out.residual[b] -= outflow;
   }
@@ -242,7 +242,7 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
   const double drho = fluid_.density_derivative();
   Eigen::MatrixXd& jac = out.jacobian;
   jac.setZero(n, n);
-  for (int i = 0; i < n; ++i) jac(i, i) += drho * leak_volume_[i];
+  for (int i = 0; i < n; ++i) jac(i, i) += homotopy_ * drho * leak_volume_[i];
   for (int k = 0; k < nf; ++k) {
     const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
     for (int end = 0; end < 2; ++end) {
@@ -262,13 +262,13 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     deta[a] += 0.5 * drho * out.eta[k] / rho;
     deta[b] += 0.5 * drho * out.eta[k] / rho;
     const double dp = out.pressure[a] - out.pressure[b];
-    const Eigen::RowVectorXd d_outflow = dt_s_ * dp * deta;
+    const Eigen::RowVectorXd d_outflow = flow_dt() * dp * deta;
     jac.row(a) += d_outflow;
     jac.row(b) -= d_outflow;
-    jac(a, a) += dt_s_ * out.eta[k];
-    jac(a, b) -= dt_s_ * out.eta[k];
-    jac(b, b) += dt_s_ * out.eta[k];
-    jac(b, a) -= dt_s_ * out.eta[k];
+    jac(a, a) += flow_dt() * out.eta[k];
+    jac(a, b) -= flow_dt() * out.eta[k];
+    jac(b, b) += flow_dt() * out.eta[k];
+    jac(b, a) -= flow_dt() * out.eta[k];
   }
   for (int i = 0; i < n; ++i) jac.col(i) *= out.pressure_slope[i];
   for (int i = 0; i < n; ++i) jac(i, i) += fill_density_slope(x[i], i) * out.volume[i];  // storage
@@ -298,8 +298,8 @@ void FlowNetwork::rescale_partly_filled_nodes(Evaluation& ev) {
   const int n = static_cast<int>(trial_nodes_.size());
   Eigen::VectorXd conductance = fluid_.density_derivative() * ev.volume;
   for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
-    conductance[fracture_node_a_[k]] += dt_s_ * ev.eta[k];
-    conductance[fracture_node_b_[k]] += dt_s_ * ev.eta[k];
+    conductance[fracture_node_a_[k]] += flow_dt() * ev.eta[k];
+    conductance[fracture_node_b_[k]] += flow_dt() * ev.eta[k];
   }
   const double rho0 = fluid_.density(0.0);
   for (int i = 0; i < n; ++i) {
@@ -317,27 +317,62 @@ void FlowNetwork::rescale_partly_filled_nodes(Evaluation& ev) {
 }
 
 bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
-                         NewtonProgress& progress) {
+                         NewtonProgress& progress, bool pseudo_transient) {
   const int n = static_cast<int>(trial_nodes_.size());
   const double mass_scale = std::max(old_mass_.sum() + injected_.sum(), 1e-300);
   const double tol = settings_.tolerance;
   Evaluation ev, trial;
   Eigen::VectorXd& x = unknowns_;
-  for (int it = 0; it < settings_.max_newton_iterations; ++it) {
+  // Pseudo-transient continuation: (J + shift D) dx = -R with D the nodes' capacities
+  // (the slope each node's own mass balance has on its own, always positive), the shift
+  // relaxed as the residual falls (switched evolution relaxation) and raised when a
+  // step would multiply the residual. A large shift moves each node towards its own
+  // balance (a node short of fluid fills up, even where the full Jacobian points the
+  // other way); a vanishing shift is Newton.
+  double shift = 1.0;
+  const int max_iterations = pseudo_transient ? 4 * settings_.max_newton_iterations : settings_.max_newton_iterations;
+  Eigen::VectorXd capacity(n);
+  for (int it = 0; it < max_iterations; ++it) {
     evaluate(x, base, s, ev, true);
     rescale_partly_filled_nodes(ev);
     progress.residual = ev.residual.cwiseAbs().maxCoeff() / mass_scale;
-    const Eigen::VectorXd dx = ev.jacobian.partialPivLu().solve(-ev.residual);
-    if (!dx.allFinite()) throw ConvergenceError("fluid flow: singular mass-balance Jacobian");
-    ++stats.newton_iterations;
-    // Backtracking on the largest mass residual: apertures and transmissivities have
-    // kinks at the minimum widths, where full Newton steps may overshoot.
-    double alpha = 1.0;
     const double merit = ev.residual.norm();
-    for (int cut = 0; cut < 30; ++cut, alpha *= 0.5) {
-      evaluate(x + alpha * dx, base, s, trial, false);
-      if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit || merit <= tol * mass_scale) break;
+    if (pseudo_transient) {
+      capacity = fluid_.density_derivative() * ev.volume;
+      for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
+        const int a = fracture_node_a_[k], b = fracture_node_b_[k];
+        const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
+        capacity[a] += flow_dt() * ev.eta[k] + std::max(0.0, fill_density(x[a], a) * half * ev.slope[2 * k] * s(2 * k, a));
+        capacity[b] += flow_dt() * ev.eta[k] +
+                       std::max(0.0, fill_density(x[b], b) * half * ev.slope[2 * k + 1] * s(2 * k + 1, b));
+      }
+      for (int i = 0; i < n; ++i)
+        if (x[i] < 0.0) capacity[i] += fluid_.density(0.0) * ev.volume[i] / fill_scale_[i];
     }
+    Eigen::VectorXd dx;
+    double alpha = 1.0;
+    for (int attempt = 0; attempt < 30; ++attempt) {
+      Eigen::MatrixXd jac = ev.jacobian;
+      if (pseudo_transient) jac.diagonal() += shift * capacity;
+      dx = jac.partialPivLu().solve(-ev.residual);
+      if (!dx.allFinite()) throw ConvergenceError("fluid flow: singular mass-balance Jacobian");
+      ++stats.newton_iterations;
+      if (!pseudo_transient || merit <= tol * mass_scale) break;
+      evaluate(x + dx, base, s, trial, false);
+      const double ratio = trial.residual.norm() / merit;
+      if (ratio <= 2.0) {
+        shift *= std::max(ratio, 1e-3);  // switched evolution relaxation
+        break;
+      }
+      shift = std::max(10.0 * shift, 1.0);  // too long a pseudo-time step: shorten it
+    }
+    // Newton: backtracking on the mass residual; apertures and transmissivities have
+    // kinks at the minimum widths, where full Newton steps may overshoot.
+    if (!pseudo_transient)
+      for (int cut = 0; cut < 30; ++cut, alpha *= 0.5) {
+        evaluate(x + alpha * dx, base, s, trial, false);
+        if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit || merit <= tol * mass_scale) break;
+      }
     x += alpha * dx;
     progress.max_pressure = 0.0, progress.change = 0.0;
     for (int i = 0; i < n; ++i) {
@@ -353,30 +388,76 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
   return false;
 }
 
+bool FlowNetwork::continuation(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
+                               NewtonProgress& progress) {
+  struct Restore {
+    double& value;
+    ~Restore() { value = 1.0; }
+  } restore{homotopy_};
+  double lambda = 0.0, step = 0.125;
+  int failures = 0;
+  while (lambda < 1.0) {
+    const double next = std::min(1.0, lambda + step);
+    const Eigen::VectorXd x0 = unknowns_, scale0 = fill_scale_;
+    homotopy_ = next;
+    if (newton(base, s, stats, progress, false)) {
+      lambda = next;
+      step *= 2.0;
+      continue;
+    }
+    unknowns_ = x0;
+    fill_scale_ = scale0;
+    step *= 0.25;
+    if (++failures > 12 || step < 1e-6) return false;
+  }
+  return true;
+}
+
 void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
                                      FlowSolveStatistics& stats) {
   const Eigen::VectorXd start = unknowns_, start_scale = fill_scale_;
   NewtonProgress progress;
-  if (newton(base, s, stats, progress)) return;
-  // Second start. A node that is not yet pressurised but takes in more fluid than it
+  if (newton(base, s, stats, progress, false)) return;
+  const Eigen::VectorXd stalled = unknowns_, stalled_scale = fill_scale_;
+  ++stats.restarts;
+  unknowns_ = start;
+  fill_scale_ = start_scale;
+  if (newton(base, s, stats, progress, true)) return;
+  // Further starts. A node that is not yet pressurised but takes in more fluid than it
   // can hold must end up near the pressure of the node feeding it. On the way there its
   // mass balance is not monotone: its own pressure opens the fracture behind it and
   // draws more fluid in, so Newton from the empty side can stall at a local minimum of
-  // the residual (seen at new tips of inclined fractures). Start such nodes at the
-  // largest pressure of their neighbours instead.
+  // the residual (seen at new tips of inclined fractures). Such nodes start at the
+  // largest pressure of their neighbours instead: first those of the warm start, then
+  // those Newton had reached when it stalled (the warm start may not be pressurised
+  // yet, e.g. at the first step).
+  auto flooded = [&](const Eigen::VectorXd& from) {
+    Eigen::VectorXd x = from;
+    for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
+      const int a = fracture_node_a_[k], b = fracture_node_b_[k];
+      if (from[a] <= 0.0) x[a] = std::max(x[a], from[b]);
+      if (from[b] <= 0.0) x[b] = std::max(x[b], from[a]);
+    }
+    return x;
+  };
+  for (const auto& [from, scale] : {std::pair{start, start_scale}, std::pair{stalled, stalled_scale}}) {
+    const Eigen::VectorXd guess = flooded(from);
+    if (guess == from) continue;
+    for (const bool pseudo_transient : {false, true}) {
+      ++stats.restarts;
+      unknowns_ = guess;
+      fill_scale_ = scale;
+      if (newton(base, s, stats, progress, pseudo_transient)) return;
+    }
+  }
+  // Last resort, continuation: the step's inflows, leak-off and flow scaled by lambda
+  // from 0 (the nodes keep their masses: solved by the warm start's fill states) to 1,
+  // each stage solved by Newton from the last. The path follows the physical filling
+  // of the network instead of jumping to it.
+  ++stats.restarts;
   unknowns_ = start;
   fill_scale_ = start_scale;
-  Eigen::VectorXd flooded = start;
-  for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
-    const int a = fracture_node_a_[k], b = fracture_node_b_[k];
-    if (start[a] <= 0.0) flooded[a] = std::max(flooded[a], start[b]);
-    if (start[b] <= 0.0) flooded[b] = std::max(flooded[b], start[a]);
-  }
-  if (flooded != start) {
-    ++stats.restarts;
-    unknowns_ = flooded;
-    if (newton(base, s, stats, progress)) return;
-  }
+  if (continuation(base, s, stats, progress)) return;
   std::ostringstream msg;
   msg << "fluid flow: Newton iterations did not converge in " << settings_.max_newton_iterations
       << " iterations (mass residual " << progress.residual << " of the stored mass, last pressure change "

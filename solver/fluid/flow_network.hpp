@@ -26,7 +26,11 @@
 // w_e(p) = base_e + S_e . p (exact for the linear block system once its contacts are
 // fixed), bounded below by the minimum widths (0.5 um inside the network, 0.1 um at
 // tips) and by the closing limit (at most 5 % a step). Newton's method on the nodal
-// unknowns then solves the coupled problem without stabilisation constants.
+// unknowns then solves the coupled problem without stabilisation constants. Where it
+// stalls (a closed new tip whose own pressure opens the fracture behind it makes the
+// mass balance non-monotone), the solve falls back, in order, on pseudo-transient
+// continuation, restarts with the dry nodes at their neighbours' pressure, and
+// continuation in the step's inflows; FlowSolveStatistics::restarts counts them.
 //
 // Units SI, per metre of out-of-plane thickness (h = 1 m in eq. 2.2-2.3).
 
@@ -70,7 +74,7 @@ struct Injection {
 
 struct FlowSolveStatistics {
   int newton_iterations = 0;
-  int restarts = 0;                    ///< Newton restarted from a flooded guess
+  int restarts = 0;                    ///< fallbacks used after Newton stalled (see the header)
   int zero_pressure_nodes = 0;
   double max_relative_residual = 0.0;  ///< max |mass residual| / mass scale at convergence
 };
@@ -131,10 +135,19 @@ class FlowNetwork {
   struct NewtonProgress {
     double residual = 0.0, change = 0.0, max_pressure = 0.0;  // of the last iteration
   };
-  /// Newton from the current unknowns; false if it did not converge.
+  /// Newton from the current unknowns, with line search or as pseudo-transient
+  /// continuation; false if it did not converge.
   bool newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
-              NewtonProgress& progress);
-  /// Newton, restarted once from a flooded guess if needed; throws ConvergenceError.
+              NewtonProgress& progress, bool pseudo_transient);
+  /// Newton along lambda = 0 -> 1 (homotopy_); false if a stage could not be solved.
+  bool continuation(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
+                    NewtonProgress& progress);
+  /// Scale of the step's inflows, leak-off and flow in the mass balance (1 except
+  /// during continuation), and the flow's time factor it gives.
+  double homotopy_ = 1.0;
+  double flow_dt() const { return homotopy_ * dt_s_; }
+  /// Newton, then pseudo-transient continuation, flooded starts and continuation in
+  /// the step's inflows if needed; throws ConvergenceError.
   void solve_mass_balance(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats);
   /// Stored mass per volume of a node in fill state y, and its derivative in y.
   double fill_density(double y, int node) const;

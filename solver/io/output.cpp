@@ -266,7 +266,11 @@ void append_csv_row(std::string& out, const JointRow& j) {
   out += j.state_q;
   out += j.broken ? ",1" : ",0";
   out += j.natural ? ",1" : ",0";
-  out += j.fluid ? ",1\n" : ",0\n";
+  out += j.fluid ? ",1," : ",0,";
+  append_number(out, j.pressure_p_Pa);
+  out += ',';
+  append_number(out, j.pressure_q_Pa);
+  out += '\n';
 }
 
 }  // namespace
@@ -294,7 +298,7 @@ void write_file_atomically(const std::string& path, const std::string& text) {
 void write_joints_csv(const std::string& path, const std::vector<JointRow>& joints) {
   std::string out =
       "id,px,py,qx,qy,length,aperture_p,aperture_q,normal_stress_p,normal_stress_q,"
-      "shear_stress_p,shear_stress_q,state_p,state_q,broken,natural,fluid\n";
+      "shear_stress_p,shear_stress_q,state_p,state_q,broken,natural,fluid,pressure_p,pressure_q\n";
   out.reserve(out.size() + joints.size() * 320);
   for (const JointRow& j : joints) append_csv_row(out, j);
   write_file_atomically(path, out);
@@ -340,7 +344,7 @@ void write_joints_vtu(const std::string& path, const std::vector<JointRow>& join
   const std::size_t n = joints.size();
   std::vector<Vec2> points;
   std::vector<int> offsets{0};
-  std::vector<double> aperture, normal_stress, shear_stress;
+  std::vector<double> aperture, normal_stress, shear_stress, pressure;
   std::vector<int> state, broken, natural, fluid, id;
   points.reserve(2 * n);
   offsets.reserve(n + 1);
@@ -351,6 +355,7 @@ void write_joints_vtu(const std::string& path, const std::vector<JointRow>& join
     aperture.push_back(0.5 * (j.aperture_p_m + j.aperture_q_m));
     normal_stress.push_back(0.5 * (j.normal_stress_p_Pa + j.normal_stress_q_Pa));
     shear_stress.push_back(0.5 * (j.shear_stress_p_Pa + j.shear_stress_q_Pa));
+    pressure.push_back(0.5 * (j.pressure_p_Pa + j.pressure_q_Pa));
     // A joint open at either end conducts fluid, so it is drawn as the more open state.
     state.push_back(std::min(joint_state_code(j.state_p, j.id), joint_state_code(j.state_q, j.id)));
     broken.push_back(j.broken ? 1 : 0);
@@ -366,6 +371,7 @@ void write_joints_vtu(const std::string& path, const std::vector<JointRow>& join
   append_scalar_array(out, "aperture", aperture);
   append_scalar_array(out, "normal_stress", normal_stress);
   append_scalar_array(out, "shear_stress", shear_stress);
+  append_scalar_array(out, "fluid_pressure", pressure);
   append_int32_array(out, "state", state);
   append_int32_array(out, "broken", broken);
   append_int32_array(out, "natural", natural);

@@ -34,6 +34,7 @@ struct JointRow {
   double shear_stress_p_Pa = 0.0, shear_stress_q_Pa = 0.0;
   std::string state_p, state_q;          ///< "open", "sliding", "locked"
   bool broken = false, natural = false, fluid = false;
+  double pressure_p_Pa = 0.0, pressure_q_Pa = 0.0;  ///< fluid pressure at the end points (0 if dry)
 };
 
 /// Writes `text` to `path` atomically (temporary file + rename). Throws std::runtime_error.
@@ -41,7 +42,7 @@ void write_file_atomically(const std::string& path, const std::string& text);
 
 /// Per-joint CSV, one row per joint; header:
 /// id,px,py,qx,qy,length,aperture_p,aperture_q,normal_stress_p,normal_stress_q,
-/// shear_stress_p,shear_stress_q,state_p,state_q,broken,natural,fluid
+/// shear_stress_p,shear_stress_q,state_p,state_q,broken,natural,fluid,pressure_p,pressure_q
 void write_joints_csv(const std::string& path, const std::vector<JointRow>& joints);
 
 /// VTK XML unstructured grid of the blocks (polygons) with point data

@@ -47,6 +47,10 @@ std::vector<io::JointRow> joint_rows(const dda::BlockSystem& s, const fluid::Flo
     r.broken = !contact_p.bonded || !contact_q.bonded;
     r.natural = joint.properties.natural;
     r.fluid = flow ? flow->wetted(static_cast<int>(j)) : s.joint_wetted(static_cast<int>(j));
+    if (flow && r.fluid) {
+      r.pressure_p_Pa = flow->pressure(joint.point_p);
+      r.pressure_q_Pa = flow->pressure(joint.point_q);
+    }
   }
   return rows;
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -187,6 +188,71 @@ TEST(FlowNetwork, WettingAddsNodesAndStartsArrivalClock) {
   EXPECT_TRUE(net.zero_pressure(2));
   EXPECT_EQ(net.pressure(2), 0.0);
   EXPECT_LT(net.mass_balance_error(), 1e-13);
+}
+
+TEST(FlowNetwork, NewTipThatOverflowsFillsAndPressurises) {
+  // A newly wetted fracture, 0.1 mm open at the pressurised node and 0.2 um at its far
+  // end: the tip can hold 1e-4 kg but the fracture could pass about 1 kg in the step.
+  // The tip must fill and end about 10 kPa below its neighbour, with its mass balance
+  // rho(p2) V2 = dt eta (p1 - p2) (rigid walls; the tolerance is 100 times Newton's).
+  // Newton starts the tip empty; it must cross zero pressure without stalling.
+  FlowNetwork net = chain(2, 1.0);
+  net.fill_initially(0, 1e-3);
+  net.add_injection({0, 0.1, 0.0});
+  net.begin_step(1.0);
+  net.wet(1);
+  Eigen::VectorXd base(4);  // ends (f0,p0) (f0,p1) (f1,p1) (f1,p2)
+  base << 1e-3, 1e-3, 1e-4, 2e-7;
+  const auto stats = net.solve(base, Eigen::MatrixXd::Zero(4, 3));
+  net.commit();
+  EXPECT_EQ(stats.zero_pressure_nodes, 0);
+  const double p1 = net.pressure(1), p2 = net.pressure(2);
+  EXPECT_GT(p2, 1e7);
+  EXPECT_FALSE(net.zero_pressure(2));
+  const double mean_width = 0.5 * (1e-4 + 2e-7);
+  const double eta = 0.5 * (water().density(p1) + water().density(p2)) * std::pow(mean_width, 3) / (12.0 * 1e-3);
+  const double tip_mass = water().density(p2) * 0.5 * 2e-7;
+  EXPECT_NEAR(tip_mass, eta * (p1 - p2), 1e-4 * tip_mass);
+  EXPECT_LT(net.mass_balance_error(), 1e-13);
+}
+
+TEST(FlowNetwork, NewTipsWithElasticWallsConverge) {
+  // Five new tips taken from 20,000 random three-node networks (injection node, node,
+  // new tip) with symmetric positive compliances dV_i/dp_j, as the block system's are,
+  // that the session-2 solver (Newton with line search alone) could not solve: the tip
+  // is closed by the mechanics, its pressure opens the fracture behind it, and Newton
+  // stalled. Each must now converge (with the fallbacks of solve_mass_balance) and
+  // close the ledger. Parameters: fracture 0 initial width, injection rate, dt, base
+  // widths of the two ends of the new fracture, sensitivity S (4 ends x 3 nodes).
+  struct Case {
+    double width, rate, dt;
+    std::array<double, 2> base;
+    std::array<double, 12> sensitivity;
+  };
+  const std::vector<Case> cases{
+      {9.7009308353015233e-05, 0.54312367391359462, 0.80601729393241717, {-5.9825290681670043e-06, -4.3275247698852409e-06}, {6.2703305902918238e-12, 2.9112664612154115e-12, 6.8353649161153913e-13, 1.553906110835138e-12, 1.0847834046282974e-12, 4.9868527131691528e-13, 1.3573603503802735e-12, 9.4757461337327251e-13, 4.3560908209596784e-13, 6.8353649161153913e-13, 9.3429435341288313e-13, 1.7248595939412364e-10}},
+      {2.8136985225452605e-05, 0.27121775169064694, 0.69493989373622234, {-6.1805391978601071e-06, -1.5668105494542624e-08}, {3.2763035506809414e-12, 3.4366820057474897e-13, 1.0567663268556062e-14, 2.9560747376957535e-13, 2.152714785267723e-12, 7.1039439097687849e-13, 4.8060726805173616e-14, 3.4999465969137641e-13, 1.1549799574851424e-13, 1.0567663268556062e-14, 8.2589238672539271e-13, 1.9022054574588778e-11}},
+      {0.00081081330540327295, 0.35353616216899003, 0.86467477309476759, {-1.1070613249212121e-06, -1.7545356434500425e-06}, {1.0112058473231835e-10, 1.9675961340545238e-11, 2.8481684441671674e-11, 7.8717026642303322e-12, 2.5068942173898588e-12, 8.182858953566724e-12, 1.1804258676314906e-11, 3.7592918684157781e-12, 1.2270862851391197e-11, 2.8481684441671674e-11, 2.0453721804957921e-11, 1.1030972787476397e-10}},
+      {7.9084150422146314e-05, 0.56848824263715536, 0.774587268018325, {-1.1802342403316439e-06, -4.7578945702240221e-07}, {6.1244984572246024e-11, 9.2850607713178399e-12, 5.7489840954888319e-12, 6.842095051215336e-12, 3.7399116921291686e-12, 6.96753318251519e-12, 2.4429657201025035e-12, 1.3353331094778097e-12, 2.4877533257211699e-12, 5.7489840954888319e-12, 9.4552865082363603e-12, 3.6379929843867727e-11}},
+      {2.0344401486986933e-05, 0.71191908341318089, 0.62370528174841489, {-0.00061690858081655934, -4.5105566743940522e-06}, {1.3376894750606885e-11, 4.660521933216082e-12, 9.7600970733451389e-14, 1.8838395077836863e-12, 1.2918591913675521e-11, 1.1745159444789671e-11, 2.7766824254323958e-12, 1.9041339232893287e-11, 1.7311760200112317e-11, 9.7600970733451389e-14, 2.9056919644901987e-11, 1.1500461880553571e-10}},
+  };
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const Case& k = cases[c];
+    FlowNetwork net = chain(2, 1.0);
+    net.fill_initially(0, k.width);
+    net.add_injection({0, k.rate, 0.0});
+    net.begin_step(k.dt);
+    net.wet(1);
+    Eigen::VectorXd base(4);
+    base << k.width, k.width, k.base[0], k.base[1];
+    Eigen::MatrixXd s(4, 3);
+    for (int r = 0; r < 4; ++r)
+      for (int col = 0; col < 3; ++col) s(r, col) = k.sensitivity[3 * r + col];
+    EXPECT_NO_THROW(net.solve(base, s)) << "case " << c;
+    net.commit();
+    EXPECT_LT(net.mass_balance_error(), 1e-13) << "case " << c;
+    for (int p = 0; p < 3; ++p) EXPECT_GE(net.pressure(p), 0.0) << "case " << c;
+  }
 }
 
 }  // namespace

@@ -183,14 +183,16 @@ TEST_F(OutputTest, CsvHeaderAndRowExact) {
   j.broken = true;
   j.natural = false;
   j.fluid = true;
+  j.pressure_p_Pa = 2.5e6;
+  j.pressure_q_Pa = 0.0;
   write_joints_csv(path("joints/joints_000001.csv"), {j});
 
   const std::string text = read_text(path("joints/joints_000001.csv"));
   EXPECT_EQ(text,
             "id,px,py,qx,qy,length,aperture_p,aperture_q,normal_stress_p,normal_stress_q,"
-            "shear_stress_p,shear_stress_q,state_p,state_q,broken,natural,fluid\n"
+            "shear_stress_p,shear_stress_q,state_p,state_q,broken,natural,fluid,pressure_p,pressure_q\n"
             "7,0.1,-2.5,0.001,3,0.30000000000000004,1e-05,0,-2500000,1.5e+07,123.456,"
-            "-0.3333333333333333,open,locked,1,0,1\n");
+            "-0.3333333333333333,open,locked,1,0,1,2500000,0\n");
   // Every number parses back to the identical double.
   EXPECT_EQ(std::strtod("0.30000000000000004", nullptr), 0.1 + 0.2);
   EXPECT_EQ(std::strtod("-0.3333333333333333", nullptr), -1.0 / 3.0);
@@ -286,7 +288,7 @@ TEST_F(OutputTest, VtuJointsStateReductionAndFields) {
 
   EXPECT_EQ(v.n_points, 10);
   EXPECT_EQ(v.n_cells, 5);
-  EXPECT_EQ(v.n_arrays, 12);  // 8 cell arrays, Points, 3 cell-structure arrays
+  EXPECT_EQ(v.n_arrays, 13);  // 9 cell arrays, Points, 3 cell-structure arrays
   expect_consistent_cells(v);
   EXPECT_EQ(v["state"].values, (std::vector<std::string>{"0", "1", "2", "0", "1"}));
   EXPECT_EQ(v["types"].values, (std::vector<std::string>(5, "3")));
