@@ -147,6 +147,8 @@ void advance(Model& model, double dt_s, int cuts_left, dda::StepStatistics& stat
       counters.fractures_wetted += cs.fractures_wetted;
       counters.newton_iterations += cs.newton_iterations;
       counters.newton_restarts += cs.newton_restarts;
+      counters.seconds_sensitivity += cs.seconds_sensitivity;
+      counters.seconds_flow += cs.seconds_flow;
       counters.max_relative_residual = std::max(counters.max_relative_residual, cs.max_relative_residual);
     }
   } catch (const ConvergenceError& e) {

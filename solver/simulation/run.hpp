@@ -34,6 +34,8 @@ struct RunResult {
 struct FlowStepCounters {
   int fractures_wetted = 0, newton_iterations = 0, newton_restarts = 0, step_cuts = 0;
   double max_relative_residual = 0.0;
+  double seconds_sensitivity = 0.0;  ///< building S = J K^-1 B
+  double seconds_flow = 0.0;         ///< flow solves and the blocks' pressure response
 };
 
 /// One (coupled) step of length dt; a step that does not converge is cut in two
