@@ -60,9 +60,15 @@ int run_command(int argc, char** argv, bool check_only) {
                  result.time_s, out_dir.c_str());
     return 1;
   }
-  if (!quiet)
+  if (!quiet) {
     std::fprintf(stderr, "done: %d steps in %.2f s (%d factorisations); outputs in %s\n", result.totals.steps,
                  result.wall_seconds, result.totals.factorizations, out_dir.c_str());
+    if (result.totals.alm_stalls > 0)
+      std::fprintf(stderr,
+                   "note: %d contact solves ended as ALM stalls (loops of closed contacts that cannot all close); "
+                   "largest gap left %.2g of a contact length (accepted below 1e-6)\n",
+                   result.totals.alm_stalls, result.totals.max_alm_stall_mismatch);
+  }
   return 0;
 }
 

@@ -375,7 +375,8 @@ void BlockSystem::add_spring_to_rhs(const VertexEdgeSpring& s, double weight, do
 Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
   const double kn = settings_.normal_stiffness_N_m, ks = settings_.shear_stiffness_N_m;
   const Eigen::VectorXd block_loads = load_vector_;
-  Eigen::VectorXd d;
+  Eigen::VectorXd d, d_previous;
+  double displacement_change = 0.0;
   const int max_iterations = settings_.augmented_lagrangian ? settings_.max_alm_iterations : 1;
   double error = 0.0, scale = 0.0;
   int worst_contact = -1;
@@ -402,11 +403,15 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
       }
     }
     const auto start = Clock::now();
+    d_previous.swap(d);
     d = solver_.solve(load_vector_);
     if (coupling_) d = coupling_->solve(*this, solver_, d);
     stats.seconds_solve += seconds_since(start);
     ++stats.alm_iterations;
     if (!settings_.augmented_lagrangian) break;
+    // ||D(m+1) - D(m)|| / ||D(m+1)|| of the inner iterations (NOTES erratum 2), reported.
+    const double d_norm = d.norm();
+    displacement_change = it == 0 || d_norm == 0.0 ? 0.0 : (d - d_previous).norm() / d_norm;
 
     // Uzawa update of the multipliers (eq. 2.19); stop when the corrections are
     // negligible against the contact forces themselves. A contact is one normal and
@@ -488,6 +493,7 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
     }
   }
   load_vector_ = block_loads;
+  stats.max_alm_displacement_change = std::max(stats.max_alm_displacement_change, displacement_change);
   return d;
 }
 

@@ -52,6 +52,9 @@ struct StepStatistics {
   int alm_iterations = 0;        ///< linear solves in the step
   int alm_stalls = 0;            ///< ALM solves ended by the stall test (inconsistent contact loops)
   double max_alm_stall_mismatch = 0.0;  ///< largest gap / contact length accepted at a stall
+  /// Largest ||D(m+1) - D(m)|| / ||D(m+1)|| over the last ALM iteration of each solve
+  /// (NOTES erratum 2; reported, the stop test is on the contact forces).
+  double max_alm_displacement_change = 0.0;
   int factorizations = 0;
   int coupled_state_changes = 0;  ///< e.g. fractures newly wetted by the fluid
   int bonds_broken = 0;

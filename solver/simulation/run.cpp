@@ -56,7 +56,7 @@ const std::vector<std::string> kNetworkColumns{
 
 std::vector<std::string> history_columns(const Model& model) {
   std::vector<std::string> columns{
-      "step", "time_s", "open_close_iterations", "alm_iterations", "alm_stalls", "alm_stall_mismatch", "factorizations", "bonds_broken",
+      "step", "time_s", "open_close_iterations", "alm_iterations", "alm_stalls", "alm_stall_mismatch", "alm_displacement_change", "factorizations", "bonds_broken",
       "state_changes", "vertex_vertex_activations", "active_vertex_vertex", "open_joint_ends",
       "max_aperture_m", "max_penetration_m", "step_wall_s", "elapsed_wall_s",
       "step_cuts", "fractures_wetted", "flow_newton_iterations", "flow_newton_restarts", "flow_max_residual"};
@@ -79,7 +79,8 @@ std::vector<double> history_row(const Model& model, int step, double time_s, con
       max_aperture = std::max(max_aperture, system.joint_gap(static_cast<int>(j), end));
     }
   std::vector<double> row{double(step), time_s, double(st.open_close_iterations), double(st.alm_iterations),
-                          double(st.alm_stalls), st.max_alm_stall_mismatch, double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
+                          double(st.alm_stalls), st.max_alm_stall_mismatch, st.max_alm_displacement_change,
+                          double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
                           double(st.vertex_vertex_activations), double(st.active_vertex_vertex), double(open_ends),
                           max_aperture, st.max_penetration_m, st.seconds_total, elapsed,
                           double(flow_counters.step_cuts), double(flow_counters.fractures_wetted),
@@ -122,6 +123,7 @@ void add_statistics(dda::StepStatistics& total, const dda::StepStatistics& s) {
   total.alm_iterations += s.alm_iterations;
   total.alm_stalls += s.alm_stalls;
   total.max_alm_stall_mismatch = std::max(total.max_alm_stall_mismatch, s.max_alm_stall_mismatch);
+  total.max_alm_displacement_change = std::max(total.max_alm_displacement_change, s.max_alm_displacement_change);
   total.factorizations += s.factorizations;
   total.coupled_state_changes += s.coupled_state_changes;
   total.bonds_broken += s.bonds_broken;
@@ -181,6 +183,7 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
                  {"open_close_iterations", r.totals.open_close_iterations},
                  {"alm_iterations", r.totals.alm_iterations},
                  {"alm_stalls", r.totals.alm_stalls},
+                 {"max_alm_stall_mismatch", r.totals.max_alm_stall_mismatch},
                  {"factorizations", r.totals.factorizations},
                  {"bonds_broken", r.totals.bonds_broken},
                  {"vertex_vertex_activations", r.totals.vertex_vertex_activations},
@@ -219,6 +222,7 @@ RunResult run(Model& model, const RunOptions& options) {
     tot.open_close_iterations += st.open_close_iterations;
     tot.alm_iterations += st.alm_iterations;
     tot.alm_stalls += st.alm_stalls;
+    tot.max_alm_stall_mismatch = std::max(tot.max_alm_stall_mismatch, st.max_alm_stall_mismatch);
     tot.factorizations += st.factorizations;
     tot.bonds_broken += st.bonds_broken;
     tot.vertex_vertex_activations += st.vertex_vertex_activations;

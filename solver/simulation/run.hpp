@@ -18,6 +18,7 @@ struct RunOptions {
 struct RunTotals {
   int steps = 0;
   int open_close_iterations = 0, alm_iterations = 0, alm_stalls = 0, factorizations = 0;
+  double max_alm_stall_mismatch = 0.0;  ///< largest gap / contact length accepted at an ALM stall
   int bonds_broken = 0, vertex_vertex_activations = 0, max_active_vertex_vertex = 0;
   double seconds_assembly = 0.0, seconds_factorization = 0.0, seconds_solve = 0.0;
 };
