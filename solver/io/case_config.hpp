@@ -50,6 +50,9 @@ struct JointConfig {
   double cohesion_Pa = 0.0;
   double friction_angle_deg = 30.0;
   bool breakable = true;
+  /// "all" or "inner": only joints between two blocks of domain.inner may break
+  /// (fracture overrides still apply).
+  std::string breakable_region = "all";
 };
 
 /// A line feature: initial fracture, natural fracture, prescribed path or interface.

@@ -724,7 +724,11 @@ const Table<JointConfig>& joint_table() {
        number({"friction_angle", "deg", "Table 3.1: phi = 30 deg", "friction angle phi"},
               &JointConfig::friction_angle_deg, interval(0, false, 90, true)),
        boolean({"breakable", "", "§2.3", "false: intact bonds never break"},
-               &JointConfig::breakable)}};
+               &JointConfig::breakable),
+       choice({"breakable_region", "", "§3.4: fracturing in the inner domain only",
+               "all, or inner: only joints between two blocks whose centroids lie in domain.inner "
+               "may break (a fracture's `breakable` still overrides)"},
+              &JointConfig::breakable_region, Choices<std::string>{{"all", "all"}, {"inner", "inner"}})}};
   return table;
 }
 
@@ -1106,6 +1110,11 @@ void check_material_regions(const CaseConfig& c, const MergedChecker& m) {
   }
 }
 
+void check_breakable_region(const CaseConfig& c, const MergedChecker& m) {
+  if (c.joints.breakable_region == "inner" && !c.domain.inner)
+    m.fail("joints.breakable_region", "region 'inner' needs domain.inner");
+}
+
 void check_fractures_in_domain(const CaseConfig& c, const MergedChecker& m) {
   for (std::size_t i = 0; i < c.fractures.size(); ++i) {
     check_point_in_domain(c, m, c.fractures[i].from, item_key("fractures", i) + ".from");
@@ -1179,6 +1188,7 @@ const std::vector<CrossCheck>& cross_checks() {
       {"A material with region `inner` or `outer` needs `domain.inner`; a material box "
        "overlaps `domain.outer`.",
        check_material_regions},
+      {"`joints.breakable_region: inner` needs `domain.inner`.", check_breakable_region},
       {"Both ends of every fracture lie in `domain.outer` (its boundary included).",
        check_fractures_in_domain},
       {"Every point-load location, fixed point, injection point and probe lies in "

@@ -44,6 +44,18 @@ void assign_materials(mesh::Mesh& m, const io::CaseConfig& c) {
                        "region '" + c.materials[z].region + "' contains no block of the mesh (empty region)");
 }
 
+/// joints.breakable_region: inner. A joint may break only if both of its blocks have
+/// their centroid in domain.inner (joints on the inner boundary cannot).
+void restrict_breaking_to_inner(mesh::Mesh& m, const io::CaseConfig& c) {
+  auto inside = [&](int b) {
+    std::vector<Vec2> corners;
+    for (int p : m.blocks[b].points) corners.push_back(m.points[p]);
+    return c.domain.inner->contains(polygon_moments(corners).centroid);
+  };
+  for (auto& joint : m.joints)
+    if (!inside(joint.block_a) || !inside(joint.block_b)) joint.properties.breakable = false;
+}
+
 mesh::JointProperties default_joint_properties(const io::CaseConfig& c) {
   mesh::JointProperties p;
   p.tensile_strength_Pa = c.joints.tensile_strength_Pa;
@@ -177,6 +189,7 @@ mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
       m = mesh::build_delaunay_mesh(spec);
     }
     mesh::build_topology(m, default_joint_properties(c));
+    if (c.joints.breakable_region == "inner") restrict_breaking_to_inner(m, c);
   } catch (const ModelError& e) {
     throw InputError(mesh_file, c.mesh.line, "mesh", e.what());
   }

@@ -447,6 +447,8 @@ TEST(CaseFileErrors, MaterialZones) {
                     "materials[0].box", "only used with region 'box'");
   expect_text_error("materials:\n  - {name: a, region: inner}\n", 2, "materials[0].region",
                     "needs domain.inner");
+  expect_text_error("joints: {breakable_region: inner}\n", 1, "joints.breakable_region", "needs domain.inner");
+  expect_text_error("joints: {breakable_region: outer}\n", 1, "joints.breakable_region", "");
   expect_text_error(
       "materials:\n  - name: a\n    region: box\n    box: {xmin: 60, xmax: 70, ymin: 0, ymax: 1}\n",
       4, "materials[0].box", "must overlap the domain");

@@ -215,12 +215,12 @@ def main():
           ["Case (f), constrained Delaunay mesh, Delta sigma = 0 (seed Figure 3.20): triangles of at",
            "most 1.5 m^2 in the inner domain, two 2 m initial fractures either side of the injection",
            "point. Line features are mesh constraints here, so they cannot mark the inner joints",
-           "breakable one by one: every joint may break (joints.breakable: true), the outer domain's",
-           "too; the driver reports whether the fracture ever reached the outer domain."],
+           "breakable one by one: joints.breakable_region: inner lets every joint between two",
+           "inner-domain blocks break, as the grid lines do in the structured cases."],
           'extends: base.yaml\ntitle: "Propagation in asymmetric media (seed 3.5), Delaunay mesh, Delta sigma = 0"\n'
           "mesh:\n  type: delaunay\n  max_area_inner: 1.5   # seed 3.5\n"
           "  max_area_outer: 10    # the default; the outer band is 4 m wide\n  min_angle: 25\n"
-          "joints: {breakable: true}\n",
+          "joints: {breakable: true, breakable_region: inner}\n",
           [feature("initial_left", (-2.0, 0.0), (0.0, 0.0), segment_length=2.0, initially_open=True,
                    fluid_filled=True),
            feature("initial_right", (0.0, 0.0), (2.0, 0.0), segment_length=2.0, initially_open=True,
