@@ -79,6 +79,11 @@ const std::vector<Variant> kVariants{
     {"delaunay", "delaunay.yaml", "(f) Delaunay mesh, dsigma = 0", "3.5, Fig. 3.20", false, false},
     {"bimaterial", "bimaterial.yaml", "(g) bi-material interface, dsigma = 0", "3.5, Figs. 3.21-3.23", true,
      false},
+    // Beyond the seed: the hardest pattern (turning) at two other time steps.
+    {"free_s5_dt05", "free_s5_dt05.yaml", "(a) free propagation, dsigma = 5 MPa, dt = 0.5 s", "3.4 (time step)",
+     true, false},
+    {"free_s5_dt2", "free_s5_dt2.yaml", "(a) free propagation, dsigma = 5 MPa, dt = 2 s", "3.4 (time step)", true,
+     false},
 };
 
 const std::vector<std::string> kRequiredColumns{
@@ -553,7 +558,17 @@ int main(int argc, char** argv) {
             threshold("delaunay_min_shorter_wing_m"), ">", false,
             "seed: both wings grew, 14.0 m left and 9.1 m right; reported, not gating (asymmetry allowed)");
         add(r, "fluid-filled joints outside the inner domain", p.outside_inner, threshold("straight_off_line_joints"),
-            "==", false, "outer-domain joints are breakable on this mesh (no key to prevent it); reported");
+            "==", true, "joints.breakable_region: inner keeps the outer domain intact");
+      } else if (name == "free_s5_dt05" || name == "free_s5_dt2") {
+        const VariantResult* reference = results.count("free_s5") ? &results.at("free_s5") : nullptr;
+        const Pattern* q = reference && reference->completed ? &reference->pattern : nullptr;
+        const double difference =
+            q ? std::max({std::abs(p.left - q->left), std::abs(p.right - q->right), std::abs(p.up - q->up),
+                          std::abs(p.down - q->down)})
+              : kNaN;
+        add(r, "largest difference of the four extents from the dt = 1 s run [m]", difference,
+            threshold("time_step_max_extent_difference_m"), "<=", true,
+            "beyond the seed: the pattern must not depend on the time step");
       } else if (name == "bimaterial") {
         add(r, "fluid-filled joints off the interface y = 0", p.off_y0, threshold("straight_off_line_joints"), "==",
             true, "seed: the fracture propagated along the interface (Fig. 3.22)");
@@ -632,7 +647,7 @@ int main(int argc, char** argv) {
       for (const char* f : {"propagation_free.png", "propagation_cross.png", "propagation_diagonal.png",
                             "propagation_leakoff.png", "propagation_leakoff_mass.png", "propagation_weak_diagonal.png",
                             "propagation_delaunay.png", "propagation_bimaterial.png",
-                            "propagation_bimaterial_faces.png"})
+                            "propagation_bimaterial_faces.png", "propagation_time_step.png"})
         figures.push_back(f);
     }
     result["figures"] = figures;

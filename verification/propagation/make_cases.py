@@ -183,6 +183,12 @@ def main():
     write("free_s5.yaml", ["Case (a), free propagation, Delta sigma = 5 MPa (seed Figure 3.13 B)."],
           'extends: base.yaml\ntitle: "Propagation in symmetric media (seed 3.4), free propagation, '
           'Delta sigma = 5 MPa"\n' + S5)
+    for tag, dt in (("dt05", "0.5"), ("dt2", "2")):
+        write("free_s5_%s.yaml" % tag,
+              ["Case (a) at Delta sigma = 5 MPa with a time step of %s s instead of 1 s: beyond the" % dt,
+               "seed, the pattern after 30 s must not depend on the time step (by more than one cell)."],
+              'extends: free_s5.yaml\ntitle: "Propagation in symmetric media (seed 3.4), free propagation, '
+              'Delta sigma = 5 MPa, dt = %s s"\ntime: {dt: %s, end_time: 30.0}\n' % (dt, dt))
     write("cross_s0.yaml",
           ["Case (b), cross-shaped start, Delta sigma = 0 (seed Figure 3.14 A): the vertical joints",
            "from (0, -2) to (0, 2) are also initially open and fluid-filled; every inner joint may break."],

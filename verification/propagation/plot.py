@@ -35,6 +35,8 @@ PATTERNS = {  # figure -> [(variant, panel letter)]
         ("propagation_delaunay.png", "Delaunay mesh (seed Fig. 3.20)", [("delaunay", "")]),
         ("propagation_bimaterial.png", "Bi-material interface, E = 25 GPa above, 5 GPa below (seed Fig. 3.22)",
          [("bimaterial", "")]),
+        ("propagation_time_step.png", "Free propagation at dsigma = 5 MPa with three time steps (beyond the seed)",
+         [("free_s5_dt05", "dt 0.5 s"), ("free_s5", "dt 1 s"), ("free_s5_dt2", "dt 2 s")]),
     ],
     "quick": [
         ("propagation_quick.png", "Quick tier: free propagation at dsigma = 0 and 5 MPa, weaker -45 deg diagonals",
