@@ -195,7 +195,8 @@ TEST(FlowNetwork, NewTipThatOverflowsFillsAndPressurises) {
   // end: the tip can hold 1e-4 kg but the fracture could pass about 1 kg in the step.
   // The tip must fill and end about 10 kPa below its neighbour, with its mass balance
   // rho(p2) V2 = dt eta (p1 - p2) (rigid walls; the tolerance is 100 times Newton's).
-  // Newton starts the tip empty; it must cross zero pressure without stalling.
+  // A closed-form check of a node that starts empty and ends pressurised; the stalls of
+  // elastic tips are in NewTipsWithElasticWallsConverge.
   FlowNetwork net = chain(2, 1.0);
   net.fill_initially(0, 1e-3);
   net.add_injection({0, 0.1, 0.0});
