@@ -316,6 +316,24 @@ void FlowNetwork::rescale_partly_filled_nodes(Evaluation& ev) {
   }
 }
 
+Eigen::VectorXd FlowNetwork::self_capacity(const Eigen::VectorXd& x, const Eigen::MatrixXd& s,
+                                           const Evaluation& ev) const {
+  // The slope of each node's mass balance in its own unknown, from the terms that are
+  // positive whatever the state: compressibility, conductance to the neighbours, the
+  // walls' own compliance, and the fill of a partly filled node.
+  Eigen::VectorXd capacity = fluid_.density_derivative() * ev.volume;
+  for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
+    const int a = fracture_node_a_[k], b = fracture_node_b_[k];
+    const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
+    capacity[a] += flow_dt() * ev.eta[k] + std::max(0.0, fill_density(x[a], a) * half * ev.slope[2 * k] * s(2 * k, a));
+    capacity[b] +=
+        flow_dt() * ev.eta[k] + std::max(0.0, fill_density(x[b], b) * half * ev.slope[2 * k + 1] * s(2 * k + 1, b));
+  }
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    if (x[i] < 0.0) capacity[i] += fluid_.density(0.0) * ev.volume[i] / fill_scale_[i];
+  return capacity;
+}
+
 bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
                          NewtonProgress& progress, bool pseudo_transient) {
   const int n = static_cast<int>(trial_nodes_.size());
@@ -323,56 +341,52 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
   const double tol = settings_.tolerance;
   Evaluation ev, trial;
   Eigen::VectorXd& x = unknowns_;
-  // Pseudo-transient continuation: (J + shift D) dx = -R with D the nodes' capacities
-  // (the slope each node's own mass balance has on its own, always positive), the shift
-  // relaxed as the residual falls (switched evolution relaxation) and raised when a
-  // step would multiply the residual. A large shift moves each node towards its own
-  // balance (a node short of fluid fills up, even where the full Jacobian points the
-  // other way); a vanishing shift is Newton.
+  auto solve_linear = [&](const Eigen::MatrixXd& jacobian) {
+    Eigen::VectorXd dx = jacobian.partialPivLu().solve(-ev.residual);
+    if (!dx.allFinite()) throw ConvergenceError("fluid flow: singular mass-balance Jacobian");
+    ++stats.newton_iterations;
+    return dx;
+  };
+  // Pseudo-transient continuation: (J + shift D) dx = -R with D = self_capacity, the
+  // shift relaxed as the residual falls (switched evolution relaxation) and raised when
+  // a step would more than double the residual. A large shift moves each node towards
+  // its own balance (a node short of fluid fills up, even where the full Jacobian
+  // points the other way); a vanishing shift is Newton.
   double shift = 1.0;
+  Eigen::MatrixXd shifted;
   const int max_iterations = pseudo_transient ? 4 * settings_.max_newton_iterations : settings_.max_newton_iterations;
-  Eigen::VectorXd capacity(n);
   for (int it = 0; it < max_iterations; ++it) {
     evaluate(x, base, s, ev, true);
     rescale_partly_filled_nodes(ev);
     progress.residual = ev.residual.cwiseAbs().maxCoeff() / mass_scale;
     const double merit = ev.residual.norm();
-    if (pseudo_transient) {
-      capacity = fluid_.density_derivative() * ev.volume;
-      for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
-        const int a = fracture_node_a_[k], b = fracture_node_b_[k];
-        const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
-        capacity[a] += flow_dt() * ev.eta[k] + std::max(0.0, fill_density(x[a], a) * half * ev.slope[2 * k] * s(2 * k, a));
-        capacity[b] += flow_dt() * ev.eta[k] +
-                       std::max(0.0, fill_density(x[b], b) * half * ev.slope[2 * k + 1] * s(2 * k + 1, b));
-      }
-      for (int i = 0; i < n; ++i)
-        if (x[i] < 0.0) capacity[i] += fluid_.density(0.0) * ev.volume[i] / fill_scale_[i];
-    }
+    const bool converged_residual = merit <= tol * mass_scale;
     Eigen::VectorXd dx;
     double alpha = 1.0;
-    for (int attempt = 0; attempt < 30; ++attempt) {
-      Eigen::MatrixXd jac = ev.jacobian;
-      if (pseudo_transient) jac.diagonal() += shift * capacity;
-      dx = jac.partialPivLu().solve(-ev.residual);
-      if (!dx.allFinite()) throw ConvergenceError("fluid flow: singular mass-balance Jacobian");
-      ++stats.newton_iterations;
-      if (!pseudo_transient || merit <= tol * mass_scale) break;
-      evaluate(x + dx, base, s, trial, false);
-      const double ratio = trial.residual.norm() / merit;
-      if (ratio <= 2.0) {
-        shift *= std::max(ratio, 1e-3);  // switched evolution relaxation
-        break;
+    if (pseudo_transient) {
+      const Eigen::VectorXd capacity = self_capacity(x, s, ev);
+      for (int attempt = 0; attempt < 30; ++attempt) {
+        shifted = ev.jacobian;
+        shifted.diagonal() += shift * capacity;
+        dx = solve_linear(shifted);
+        if (converged_residual) break;
+        evaluate(x + dx, base, s, trial, false);
+        const double ratio = trial.residual.norm() / merit;
+        if (ratio <= 2.0) {
+          shift *= std::max(ratio, 1e-3);
+          break;
+        }
+        shift = std::max(10.0 * shift, 1.0);  // too long a pseudo-time step: shorten it
       }
-      shift = std::max(10.0 * shift, 1.0);  // too long a pseudo-time step: shorten it
-    }
-    // Newton: backtracking on the mass residual; apertures and transmissivities have
-    // kinks at the minimum widths, where full Newton steps may overshoot.
-    if (!pseudo_transient)
-      for (int cut = 0; cut < 30; ++cut, alpha *= 0.5) {
+    } else {
+      // Backtracking on the mass residual: apertures and transmissivities have kinks at
+      // the minimum widths, where full Newton steps may overshoot.
+      dx = solve_linear(ev.jacobian);
+      for (int cut = 0; cut < 30 && !converged_residual; ++cut, alpha *= 0.5) {
         evaluate(x + alpha * dx, base, s, trial, false);
-        if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit || merit <= tol * mass_scale) break;
+        if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit) break;
       }
+    }
     x += alpha * dx;
     progress.max_pressure = 0.0, progress.change = 0.0;
     for (int i = 0; i < n; ++i) {

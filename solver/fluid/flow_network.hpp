@@ -139,6 +139,9 @@ class FlowNetwork {
   /// continuation; false if it did not converge.
   bool newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
               NewtonProgress& progress, bool pseudo_transient);
+  /// Per node: the positive part of the slope of its mass balance in its own unknown
+  /// (the pseudo-transient shift's scale).
+  Eigen::VectorXd self_capacity(const Eigen::VectorXd& x, const Eigen::MatrixXd& s, const Evaluation& ev) const;
   /// Newton along lambda = 0 -> 1 (homotopy_); false if a stage could not be solved.
   bool continuation(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
                     NewtonProgress& progress);
