@@ -2,10 +2,12 @@
 // an affine model of the pressures, checked against closed-form storage, flow and
 // leak-off balances.
 
+#include <gsl/gsl_rng.h>
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "core/errors.hpp"
 #include "fluid/flow_network.hpp"
@@ -254,6 +256,63 @@ TEST(FlowNetwork, NewTipsWithElasticWallsConverge) {
     EXPECT_LT(net.mass_balance_error(), 1e-13) << "case " << c;
     for (int p = 0; p < 3; ++p) EXPECT_GE(net.pressure(p), 0.0) << "case " << c;
   }
+}
+
+TEST(FlowNetwork, RandomElasticTipsAreSolvedAndConserveMass) {
+  // Robustness over 20,000 random new tips: injection node 0 with an initially filled
+  // fracture, node 1, and the new tip node 2. The node volumes' compliance dV_i/dp_j is
+  // symmetric positive definite with positive couplings (Betti, as the block system's),
+  // the new fracture's ends start closed by up to 1 mm (node 1) and 10 um (tip), rates,
+  // widths and steps span three decades (GSL Mersenne Twister, fixed seed).
+  // The session-2 solver (Newton with line search alone) leaves 73 unsolved (0.37 %),
+  // the current one 9 (0.045 %); more than 20 (0.1 %) is a regression. Every solved network must close
+  // its ledger and keep its pressures non-negative.
+  gsl_rng* rng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(rng, 42);
+  auto log_uniform = [&](double a, double b) { return std::exp(std::log(a) + gsl_rng_uniform(rng) * std::log(b / a)); };
+  auto uniform = [&](double a, double b) { return a + gsl_rng_uniform(rng) * (b - a); };
+  const int trials = 20000;
+  int unsolved = 0, bad_ledger = 0, negative_pressure = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const double width = log_uniform(1e-5, 1e-3), rate = log_uniform(1e-3, 1.0), dt = log_uniform(0.05, 1.0);
+    const double d0 = log_uniform(1e-12, 1e-9), d1 = log_uniform(1e-12, 1e-9), d2 = log_uniform(1e-14, 1e-10);
+    const double r01 = uniform(0, 0.9), r12 = uniform(0, 0.9);
+    const double r02 = uniform(0, 0.5) * std::min(r01, r12);
+    Eigen::Matrix3d compliance;
+    compliance << d0, r01 * std::sqrt(d0 * d1), r02 * std::sqrt(d0 * d2),  //
+        r01 * std::sqrt(d0 * d1), d1, r12 * std::sqrt(d1 * d2),            //
+        r02 * std::sqrt(d0 * d2), r12 * std::sqrt(d1 * d2), d2;
+    const double share = uniform(0.1, 0.9);  // of node 1's compliance on the new fracture's side
+    const double closed_1 = log_uniform(1e-6, 1e-3), closed_2 = log_uniform(1e-8, 1e-5);
+    if (compliance.llt().info() != Eigen::Success) continue;
+    // Ends: (f0, p0) (f0, p1) (f1, p1) (f1, p2); V_i = sum of L/2 w over its ends.
+    Eigen::MatrixXd s(4, 3);
+    s.row(0) = 2.0 * compliance.row(0);
+    s.row(1) = 2.0 * (1.0 - share) * compliance.row(1);
+    s.row(2) = 2.0 * share * compliance.row(1);
+    s.row(3) = 2.0 * compliance.row(2);
+    Eigen::VectorXd base(4);
+    base << width, width, -closed_1, -closed_2;
+    FlowNetwork net = chain(2, 1.0);
+    net.fill_initially(0, width);
+    net.add_injection({0, rate, 0.0});
+    net.begin_step(dt);
+    net.wet(1);
+    try {
+      net.solve(base, s);
+    } catch (const hfdda::ConvergenceError&) {
+      ++unsolved;
+      continue;
+    }
+    net.commit();
+    bad_ledger += net.mass_balance_error() > 1e-12;
+    for (int p = 0; p < 3; ++p) negative_pressure += net.pressure(p) < 0.0;
+  }
+  gsl_rng_free(rng);
+  EXPECT_LE(unsolved, trials / 1000) << unsolved << " of " << trials << " unsolved";
+  EXPECT_EQ(bad_ledger, 0);
+  EXPECT_EQ(negative_pressure, 0);
+  std::printf("random elastic tips: %d of %d unsolved\n", unsolved, trials);
 }
 
 }  // namespace
