@@ -5,8 +5,6 @@
 #include <chrono>
 #include <limits>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <set>
 #include <sstream>
