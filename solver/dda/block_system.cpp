@@ -378,9 +378,12 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
   const int max_iterations = settings_.augmented_lagrangian ? settings_.max_alm_iterations : 1;
   double error = 0.0, scale = 0.0;
   int worst_contact = -1;
-  // Per closed contact: k g and k s of the previous iteration [N], for the stall test.
+  // Per contact: k g and k s of its mean gap and shear [N], the multiplier update of
+  // this iteration and of the last (for the stall test).
+  std::vector<double>& correction = alm_corrections_;
   std::vector<double>& previous = alm_previous_corrections_;
-  previous.assign(2 * contacts_.size(), std::numeric_limits<double>::quiet_NaN());
+  correction.assign(2 * contacts_.size(), 0.0);
+  previous.assign(2 * contacts_.size(), 0.0);
   for (int it = 0; it < max_iterations; ++it) {
     load_vector_ = block_loads;
     for (const auto& c : contacts_) {
@@ -418,6 +421,7 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
     // springs' own gaps or shears differ by a geometric offset that no displacement
     // removes, and per-spring updates would pull them apart for ever.
     error = 0.0, scale = 0.0;
+    previous.swap(correction);
     double change = 0.0;    // largest change of a correction since the last iteration [N]
     double mismatch = 0.0;  // largest |gap| or |shear| over the contact's length
     for (const auto& c : contacts_) {
@@ -439,12 +443,10 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
       mismatch = std::max(mismatch, std::max(std::abs(gap), std::abs(shear)) / length);
       const int ci = static_cast<int>(&c - contacts_.data());
       if (error > error_before) worst_contact = ci;
-      const double normal_change = std::abs(kn * gap - previous[2 * ci]);
-      const double shear_change = std::abs(ks * shear - previous[2 * ci + 1]);
-      change = std::max({change, std::isnan(normal_change) ? HUGE_VAL : normal_change,
-                         std::isnan(shear_change) ? HUGE_VAL : shear_change});
-      previous[2 * ci] = kn * gap;
-      previous[2 * ci + 1] = ks * shear;
+      correction[2 * ci] = kn * gap;
+      correction[2 * ci + 1] = ks * shear;
+      change = std::max({change, std::abs(correction[2 * ci] - previous[2 * ci]),
+                         std::abs(correction[2 * ci + 1] - previous[2 * ci + 1])});
     }
     // Gaps cannot be resolved below the round-off of the coordinates they come from.
     const double round_off_force = std::max(kn, ks) * gap_round_off_m_;
@@ -464,15 +466,10 @@ Eigen::VectorXd BlockSystem::solve_alm(StepStatistics& stats) {
     }
     for (auto& c : contacts_) {
       if (c.state == ContactState::open) continue;
-      const double w = 1.0 / c.n_springs;
-      double gap = 0.0, shear = 0.0;
+      const int ci = static_cast<int>(&c - contacts_.data());
       for (int k = 0; k < c.n_springs; ++k) {
-        gap += w * spring_gap(c.springs[k], d);
-        if (c.state == ContactState::locked) shear += w * spring_shear(c.springs[k], d);
-      }
-      for (int k = 0; k < c.n_springs; ++k) {
-        c.springs[k].normal_multiplier_N += kn * gap;
-        if (c.state == ContactState::locked) c.springs[k].shear_multiplier_N += ks * shear;
+        c.springs[k].normal_multiplier_N += correction[2 * ci];
+        c.springs[k].shear_multiplier_N += correction[2 * ci + 1];  // 0 unless locked
       }
     }
     if (it + 1 == max_iterations) {

@@ -229,7 +229,7 @@ class BlockSystem {
   double gap_round_off_m_ = 0.0;  // gaps below this are round-off of the coordinates
   std::vector<int> flips_;
   std::vector<ContactState> next_joint_state_;  ///< update_states: joint states after this round
-  std::vector<double> alm_previous_corrections_;  ///< solve_alm: k g, k s per contact, last iteration
+  std::vector<double> alm_corrections_, alm_previous_corrections_;  ///< solve_alm: k g, k s per contact
   std::vector<std::pair<int, int>> couplings_;  // block pairs in K's pattern
   bool pattern_changed_ = false;  // state changes of each contact within the current step
 

@@ -20,6 +20,9 @@ constexpr double kMinFillScale = 10.0 * kPressureRounding;
 
 struct FlowNetwork::Evaluation {
   Eigen::VectorXd pressure, pressure_slope, density, aperture, volume, storage, residual, eta;
+  /// Per node (with the Jacobian only): rho' V + dt sum eta, the slope of a full node's
+  /// mass balance in its own pressure from storage and flow to its neighbours.
+  Eigen::VectorXd conductance;
   Eigen::VectorXd slope;  // per end: d aperture / d mechanical aperture (0 on the floor, 1 above it)
   Eigen::MatrixXd jacobian;
 };
@@ -238,6 +241,12 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
   }
   if (!with_jacobian) return;
 
+  out.conductance = fluid_.density_derivative() * out.volume;
+  for (int k = 0; k < nf; ++k) {
+    out.conductance[fracture_node_a_[k]] += flow_dt() * out.eta[k];
+    out.conductance[fracture_node_b_[k]] += flow_dt() * out.eta[k];
+  }
+
   // Derivatives with respect to the pressures p first, then by the chain rule to y.
   const double drho = fluid_.density_derivative();
   Eigen::MatrixXd& jac = out.jacobian;
@@ -296,11 +305,7 @@ void FlowNetwork::rescale_partly_filled_nodes(Evaluation& ev) {
   // The fill fraction 1 + y / P is kept: the residual does not change, only the
   // storage term on the diagonal of the Jacobian of a node at zero pressure.
   const int n = static_cast<int>(trial_nodes_.size());
-  Eigen::VectorXd conductance = fluid_.density_derivative() * ev.volume;
-  for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
-    conductance[fracture_node_a_[k]] += flow_dt() * ev.eta[k];
-    conductance[fracture_node_b_[k]] += flow_dt() * ev.eta[k];
-  }
+  const Eigen::VectorXd& conductance = ev.conductance;
   const double rho0 = fluid_.density(0.0);
   for (int i = 0; i < n; ++i) {
     double& y = unknowns_[i];
@@ -321,13 +326,12 @@ Eigen::VectorXd FlowNetwork::self_capacity(const Eigen::VectorXd& x, const Eigen
   // The slope of each node's mass balance in its own unknown, from the terms that are
   // positive whatever the state: compressibility, conductance to the neighbours, the
   // walls' own compliance, and the fill of a partly filled node.
-  Eigen::VectorXd capacity = fluid_.density_derivative() * ev.volume;
+  Eigen::VectorXd capacity = ev.conductance;
   for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
     const int a = fracture_node_a_[k], b = fracture_node_b_[k];
     const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
-    capacity[a] += flow_dt() * ev.eta[k] + std::max(0.0, fill_density(x[a], a) * half * ev.slope[2 * k] * s(2 * k, a));
-    capacity[b] +=
-        flow_dt() * ev.eta[k] + std::max(0.0, fill_density(x[b], b) * half * ev.slope[2 * k + 1] * s(2 * k + 1, b));
+    capacity[a] += std::max(0.0, fill_density(x[a], a) * half * ev.slope[2 * k] * s(2 * k, a));
+    capacity[b] += std::max(0.0, fill_density(x[b], b) * half * ev.slope[2 * k + 1] * s(2 * k + 1, b));
   }
   for (Eigen::Index i = 0; i < x.size(); ++i)
     if (x[i] < 0.0) capacity[i] += fluid_.density(0.0) * ev.volume[i] / fill_scale_[i];

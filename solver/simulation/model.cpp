@@ -20,6 +20,12 @@ std::string format_point(const Vec2& p) {
 
 double domain_size(const io::CaseConfig& c) { return std::max(c.domain.outer.width(), c.domain.outer.height()); }
 
+Vec2 block_centroid(const mesh::Mesh& m, const mesh::Block& block) {
+  std::vector<Vec2> corners;
+  for (int p : block.points) corners.push_back(m.points[p]);
+  return polygon_moments(corners).centroid;
+}
+
 bool in_region(const io::MaterialConfig& zone, const io::CaseConfig& c, const Vec2& centroid) {
   if (zone.region == "all") return true;
   if (zone.region == "box") return zone.box.contains(centroid);
@@ -30,9 +36,7 @@ bool in_region(const io::MaterialConfig& zone, const io::CaseConfig& c, const Ve
 void assign_materials(mesh::Mesh& m, const io::CaseConfig& c) {
   std::vector<int> blocks_per_zone(c.materials.size(), 0);
   for (auto& block : m.blocks) {
-    std::vector<Vec2> corners;
-    for (int p : block.points) corners.push_back(m.points[p]);
-    const Vec2 centroid = polygon_moments(corners).centroid;
+    const Vec2 centroid = block_centroid(m, block);
     block.material = 0;
     for (std::size_t z = 0; z < c.materials.size(); ++z)
       if (in_region(c.materials[z], c, centroid)) block.material = static_cast<int>(z);
@@ -47,11 +51,7 @@ void assign_materials(mesh::Mesh& m, const io::CaseConfig& c) {
 /// joints.breakable_region: inner. A joint may break only if both of its blocks have
 /// their centroid in domain.inner (joints on the inner boundary cannot).
 void restrict_breaking_to_inner(mesh::Mesh& m, const io::CaseConfig& c) {
-  auto inside = [&](int b) {
-    std::vector<Vec2> corners;
-    for (int p : m.blocks[b].points) corners.push_back(m.points[p]);
-    return c.domain.inner->contains(polygon_moments(corners).centroid);
-  };
+  auto inside = [&](int b) { return c.domain.inner->contains(block_centroid(m, m.blocks[b])); };
   for (auto& joint : m.joints)
     if (!inside(joint.block_a) || !inside(joint.block_b)) joint.properties.breakable = false;
 }
