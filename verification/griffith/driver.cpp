@@ -118,8 +118,8 @@ int main(int argc, char** argv) {
   if (!options) return 2;
   const std::string &tier = options->tier, &case_dir = options->case_dir, &out_dir = options->out_dir;
   try {
-    const YAML::Node thresholds = YAML::LoadFile(case_dir + "/thresholds.yaml");
-    auto threshold = [&](const char* key) { return thresholds[key]["value"].as<double>(); };
+    const verification::Thresholds thresholds(case_dir + "/thresholds.yaml");
+    auto threshold = [&](const char* key) { return thresholds.value(key); };
     std::filesystem::create_directories(out_dir);
 
     std::vector<VariantResult> results;

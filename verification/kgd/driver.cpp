@@ -20,12 +20,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -42,6 +39,7 @@ namespace {
 
 using hfdda::verification::Check;
 using hfdda::verification::finite_or_null;
+using hfdda::verification::number;
 
 using namespace hfdda;
 
@@ -161,55 +159,17 @@ analytical::KgdViscositySolution exact_at(const Physics& p, double t) {
                                            p.total_rate_m2_s, t);
 }
 
-/// Splits one CSV line (no quoting: history.csv holds names and numbers only).
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream s(line);
-  std::string field;
-  while (std::getline(s, field, ',')) out.push_back(field);
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
-
 /// Reads history.csv into samples compared with the M-vertex; `missing_optional` gets the
 /// optional columns it lacks. Throws std::runtime_error naming a missing required column
 /// or a malformed row.
 std::vector<Sample> read_history(const std::string& path, const Physics& p, std::string& missing_optional) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("no history.csv at " + path);
-  std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error(path + " is empty");
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  const std::vector<std::string> header = split_csv(line);
-  std::map<std::string, std::size_t> column;
-  for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
-  std::string missing;
-  for (const std::string& c : kRequiredColumns)
-    if (!column.count(c)) missing += (missing.empty() ? "" : ", ") + c;
-  if (!missing.empty())
-    throw std::runtime_error("history.csv lacks column(s) " + missing + " (to be written by the coupled solver)");
+  const verification::CsvTable table = verification::CsvTable::read(path, kRequiredColumns);
   missing_optional.clear();
   for (const std::string& c : kOptionalColumns)
-    if (!column.count(c)) missing_optional += (missing_optional.empty() ? "" : ", ") + c;
-
+    if (!table.has(c)) missing_optional += (missing_optional.empty() ? "" : ", ") + c;
   std::vector<Sample> samples;
-  int row = 1;
-  while (std::getline(in, line)) {
-    ++row;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    const std::vector<std::string> f = split_csv(line);
-    if (f.size() != header.size())
-      throw std::runtime_error(path + ": row " + std::to_string(row) + " has " + std::to_string(f.size()) +
-                               " fields for " + std::to_string(header.size()) + " columns");
-    auto value = [&](const std::string& name) {
-      const auto c = column.find(name);
-      if (c == column.end()) return kNaN;  // an optional column the run did not write
-      const std::string& text = f[c->second];
-      char* end = nullptr;
-      const double v = std::strtod(text.c_str(), &end);
-      return end == text.c_str() ? kNaN : v;
-    };
+  for (std::size_t row = 0; row < table.rows(); ++row) {
+    auto value = [&](const std::string& name) { return table.value(row, name); };
     Sample s;
     s.time_s = value("time_s");
     s.t = s.time_s - p.start_time_s;
@@ -230,12 +190,6 @@ std::vector<Sample> read_history(const std::string& path, const Physics& p, std:
     samples.push_back(s);
   }
   return samples;
-}
-
-std::string number(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
 }
 
 void write_series(const std::string& path, const std::vector<Sample>& samples) {
@@ -319,8 +273,8 @@ int main(int argc, char** argv) {
   if (!options) return 2;
   const std::string &tier = options->tier, &case_dir = options->case_dir, &out_dir = options->out_dir;
   try {
-    const YAML::Node thresholds = YAML::LoadFile(case_dir + "/thresholds.yaml");
-    auto threshold = [&](const char* key) { return thresholds[key]["value"].as<double>(); };
+    const verification::Thresholds thresholds(case_dir + "/thresholds.yaml");
+    auto threshold = [&](const char* key) { return thresholds.value(key); };
     std::filesystem::create_directories(out_dir);
 
     std::vector<VariantResult> results;

@@ -26,12 +26,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -50,6 +48,7 @@ namespace {
 
 using hfdda::verification::Check;
 using hfdda::verification::finite_or_null;
+using hfdda::verification::number;
 
 using namespace hfdda;
 
@@ -165,50 +164,11 @@ struct VariantResult {
   bool has_pattern() const { return built; }
 };
 
-std::string number(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
-}
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream s(line);
-  std::string field;
-  while (std::getline(s, field, ',')) out.push_back(field);
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
-
 std::vector<Sample> read_history(const std::string& path, double initial_mass) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("no history.csv at " + path);
-  std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error(path + " is empty");
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  const std::vector<std::string> header = split_csv(line);
-  std::map<std::string, std::size_t> column;
-  for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
-  std::string missing;
-  for (const std::string& c : kRequiredColumns)
-    if (!column.count(c)) missing += (missing.empty() ? "" : ", ") + c;
-  if (!missing.empty()) throw std::runtime_error("history.csv lacks column(s) " + missing);
+  const verification::CsvTable table = verification::CsvTable::read(path, kRequiredColumns);
   std::vector<Sample> samples;
-  int row = 1;
-  while (std::getline(in, line)) {
-    ++row;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    const std::vector<std::string> f = split_csv(line);
-    if (f.size() != header.size())
-      throw std::runtime_error(path + ": row " + std::to_string(row) + " has " + std::to_string(f.size()) +
-                               " fields for " + std::to_string(header.size()) + " columns");
-    auto value = [&](const std::string& name) {
-      const std::string& text = f[column.at(name)];
-      char* end = nullptr;
-      const double v = std::strtod(text.c_str(), &end);
-      return end == text.c_str() ? kNaN : v;
-    };
+  for (std::size_t row = 0; row < table.rows(); ++row) {
+    auto value = [&](const std::string& name) { return table.value(row, name); };
     Sample s;
     s.time_s = value("time_s");
     s.wetted = value("wetted_joints");
@@ -431,11 +391,9 @@ int main(int argc, char** argv) {
   if (!options) return 2;
   const std::string &tier = options->tier, &case_dir = options->case_dir, &out_dir = options->out_dir;
   try {
-    const YAML::Node thresholds = YAML::LoadFile(case_dir + "/thresholds.yaml");
-    auto threshold = [&](const char* key) { return thresholds[key]["value"].as<double>(); };
-    auto range = [&](const char* key) {
-      return nlohmann::json{thresholds[key]["value"][0].as<double>(), thresholds[key]["value"][1].as<double>()};
-    };
+    const verification::Thresholds thresholds(case_dir + "/thresholds.yaml");
+    auto threshold = [&](const char* key) { return thresholds.value(key); };
+    auto range = [&](const char* key) { return thresholds.range(key); };
     std::filesystem::create_directories(out_dir);
     std::filesystem::remove(out_dir + "/interface_bimaterial.csv");
 
