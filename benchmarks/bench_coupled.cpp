@@ -41,39 +41,32 @@ output: {every_steps: 0, vtu: false}
 
 void run_case(benchmark::State& state, const io::CaseConfig& config, double target_s) {
   const int steps = static_cast<int>(std::llround(config.time.end_time_s / config.time.dt_s));
-  dda::StepStatistics total;
-  int newton = 0, blocks = 0, cuts = 0;
-  double sensitivity_s = 0.0, flow_s = 0.0;
+  StepStatistics total;
+  int blocks = 0;
   for (auto _ : state) {
     state.PauseTiming();
     simulation::Model model = simulation::build_model(config);
     blocks = model.system->n_blocks();
     total = {};
-    simulation::FlowStepCounters counters;
     state.ResumeTiming();
     // The runner's step with cut-back, without its output.
-    for (int s = 0; s < steps; ++s)
-      simulation::advance(model, config.time.dt_s, config.numerics.max_step_cuts, total, counters);
-    newton = counters.newton_iterations;
-    cuts = counters.step_cuts;
-    sensitivity_s = counters.seconds_sensitivity;
-    flow_s = counters.seconds_flow;
+    for (int s = 0; s < steps; ++s) total.accumulate(model.step->advance(config.time.dt_s, config.numerics.max_step_cuts));
   }
   state.counters["blocks"] = blocks;
   state.counters["steps"] = steps;
   state.counters["step_s"] = total.seconds_total / steps;
   state.counters["outer_per_step"] = double(total.open_close_iterations) / steps;
-  state.counters["newton_per_step"] = double(newton) / steps;
+  state.counters["newton_per_step"] = double(total.flow_newton_iterations) / steps;
   state.counters["factorizations_per_step"] = double(total.factorizations) / steps;
   const double factorize_s = total.seconds_factorization / std::max(1, total.factorizations);
   state.counters["factorize_s"] = factorize_s;
   state.counters["step_over_factorize"] = total.seconds_total / steps / factorize_s;
-  state.counters["step_cuts"] = cuts;
+  state.counters["step_cuts"] = total.step_cuts;
   // Where a step's time goes: factorisations of K, S = J K^-1 B, flow solves (Newton
   // and the blocks' response to the pressures), the rest (assembly, ALM solves, states).
   state.counters["factorize_s_per_step"] = total.seconds_factorization / steps;
-  state.counters["sensitivity_s_per_step"] = sensitivity_s / steps;
-  state.counters["flow_s_per_step"] = flow_s / steps;
+  state.counters["sensitivity_s_per_step"] = total.seconds_sensitivity / steps;
+  state.counters["flow_s_per_step"] = total.seconds_flow / steps;
   if (target_s > 0) state.counters["target_s"] = target_s;
 }
 

@@ -50,7 +50,7 @@ std::unique_ptr<dda::BlockSystem> make_system(int cells_per_side) {
   return system;
 }
 
-void add_counters(benchmark::State& state, const dda::BlockSystem& system, const dda::StepStatistics& last) {
+void add_counters(benchmark::State& state, const dda::BlockSystem& system, const StepStatistics& last) {
   state.counters["blocks"] = system.n_blocks();
   state.counters["unknowns"] = 6.0 * system.n_blocks();
   state.counters["nnz_K_lower"] = static_cast<double>(system.stiffness().matrix().nonZeros());
@@ -64,7 +64,7 @@ void add_counters(benchmark::State& state, const dda::BlockSystem& system, const
 // A first step from rest (loads applied, contacts settling): the realistic cost.
 void BM_DdaFirstStep(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  dda::StepStatistics last;
+  StepStatistics last;
   std::unique_ptr<dda::BlockSystem> system;
   for (auto _ : state) {
     state.PauseTiming();
@@ -80,7 +80,7 @@ void BM_DdaFirstStep(benchmark::State& state) {
 void BM_DdaSteadyStep(benchmark::State& state) {
   auto system = make_system(static_cast<int>(state.range(0)));
   system->step(1.0);
-  dda::StepStatistics last;
+  StepStatistics last;
   for (auto _ : state) last = system->step(1.0);
   add_counters(state, *system, last);
 }

@@ -61,7 +61,7 @@ int run_command(int argc, char** argv, bool check_only) {
     return 1;
   }
   if (!quiet) {
-    std::fprintf(stderr, "done: %d steps in %.2f s (%d factorisations); outputs in %s\n", result.totals.steps,
+    std::fprintf(stderr, "done: %d steps in %.2f s (%d factorisations); outputs in %s\n", result.steps,
                  result.wall_seconds, result.totals.factorizations, out_dir.c_str());
     if (result.totals.alm_stalls > 0)
       std::fprintf(stderr,

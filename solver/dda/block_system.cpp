@@ -757,6 +757,7 @@ StepStatistics BlockSystem::step(double dt_s, StepCoupling* coupling) {
         if (coupling_) coupling_->commit(*this);
         coupling_ = nullptr;
         for (const auto& c : contacts_) stats.active_vertex_vertex += c.vertex_vertex_active;
+        stats.max_active_vertex_vertex = stats.active_vertex_vertex;
         total_vv_activations_ += stats.vertex_vertex_activations;
         stats.seconds_total = seconds_since(step_start);
         return stats;

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/step_statistics.hpp"
 #include "dda/block_sparse_matrix.hpp"
 #include "dda/contacts.hpp"
 #include "mesh/mesh.hpp"
@@ -45,24 +46,6 @@ struct MechanicsSettings {
   /// Seed 2.3 (i): a bond may fail only next to an open contact and a pressurised point.
   bool failure_needs_open_neighbour_and_fluid = true;
   bool dynamic = false;                     ///< false: velocities reset every step (static)
-};
-
-struct StepStatistics {
-  int open_close_iterations = 0;
-  int alm_iterations = 0;        ///< linear solves in the step
-  int alm_stalls = 0;            ///< ALM solves ended by the stall test (inconsistent contact loops)
-  double max_alm_stall_mismatch = 0.0;  ///< largest gap / contact length accepted at a stall
-  /// Largest ||D(m+1) - D(m)|| / ||D(m+1)|| over the last ALM iteration of each solve
-  /// (NOTES erratum 2; reported, the stop test is on the contact forces).
-  double max_alm_displacement_change = 0.0;
-  int factorizations = 0;
-  int coupled_state_changes = 0;  ///< e.g. fractures newly wetted by the fluid
-  int bonds_broken = 0;
-  int state_changes = 0;
-  int vertex_vertex_activations = 0;
-  int active_vertex_vertex = 0;
-  double max_penetration_m = 0.0;
-  double seconds_assembly = 0.0, seconds_factorization = 0.0, seconds_solve = 0.0, seconds_total = 0.0;
 };
 
 class BlockSystem;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -255,6 +256,8 @@ Model build_model(const io::CaseConfig& c) {
   }
   system.set_fluid_pressure(std::move(point_pressure), std::move(wetted));
   if (c.fluid) build_flow_network(model, c);
+  model.step = std::make_unique<coupling::CoupledStep>(system, model.coupling.get(),
+                                                       std::getenv("HFDDA_TRACE_CUTS") != nullptr);
   model.mesh_seconds_ms = static_cast<int>(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   return model;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "coupling/coupled_step.hpp"
 #include "coupling/hydro_mechanical_coupling.hpp"
 #include "dda/block_system.hpp"
 #include "fluid/flow_network.hpp"
@@ -26,6 +27,8 @@ struct Model {
   std::unique_ptr<coupling::HydroMechanicalCoupling> coupling;
   std::vector<int> injection_points;  ///< mesh point of each config.injections item
   std::vector<int> probe_points;      ///< mesh point of each config.probes item
+  /// The time step of the case (blocks and, if any, the fluid coupling) with cut-back.
+  std::unique_ptr<coupling::CoupledStep> step;
 };
 
 /// Builds the mesh and the block system of a case. Throws InputError.

@@ -68,8 +68,8 @@ std::vector<std::string> history_columns(const Model& model) {
   return columns;
 }
 
-std::vector<double> history_row(const Model& model, int step, double time_s, const dda::StepStatistics& st,
-                                const FlowStepCounters& flow_counters, double elapsed) {
+std::vector<double> history_row(const Model& model, int step, double time_s, const StepStatistics& st,
+                                double elapsed) {
   const dda::BlockSystem& system = *model.system;
   int open_ends = 0;
   double max_aperture = 0.0;
@@ -83,9 +83,9 @@ std::vector<double> history_row(const Model& model, int step, double time_s, con
                           double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
                           double(st.vertex_vertex_activations), double(st.active_vertex_vertex), double(open_ends),
                           max_aperture, st.max_penetration_m, st.seconds_total, elapsed,
-                          double(flow_counters.step_cuts), double(flow_counters.fractures_wetted),
-                          double(flow_counters.newton_iterations), double(flow_counters.newton_restarts),
-                          flow_counters.max_relative_residual};
+                          double(st.step_cuts), double(st.fractures_wetted),
+                          double(st.flow_newton_iterations), double(st.flow_newton_restarts),
+                          st.max_flow_residual};
   const fluid::FlowNetwork* flow = model.flow.get();
   if (!flow) {
     row.resize(row.size() + kNetworkColumns.size(), 0.0);
@@ -118,49 +118,7 @@ std::vector<double> history_row(const Model& model, int step, double time_s, con
   return row;
 }
 
-void add_statistics(dda::StepStatistics& total, const dda::StepStatistics& s) {
-  total.open_close_iterations += s.open_close_iterations;
-  total.alm_iterations += s.alm_iterations;
-  total.alm_stalls += s.alm_stalls;
-  total.max_alm_stall_mismatch = std::max(total.max_alm_stall_mismatch, s.max_alm_stall_mismatch);
-  total.max_alm_displacement_change = std::max(total.max_alm_displacement_change, s.max_alm_displacement_change);
-  total.factorizations += s.factorizations;
-  total.coupled_state_changes += s.coupled_state_changes;
-  total.bonds_broken += s.bonds_broken;
-  total.state_changes += s.state_changes;
-  total.vertex_vertex_activations += s.vertex_vertex_activations;
-  total.active_vertex_vertex = s.active_vertex_vertex;
-  total.max_penetration_m = std::max(total.max_penetration_m, s.max_penetration_m);
-  total.seconds_assembly += s.seconds_assembly;
-  total.seconds_factorization += s.seconds_factorization;
-  total.seconds_solve += s.seconds_solve;
-  total.seconds_total += s.seconds_total;
-}
-
 }  // namespace
-
-/// One step of length dt; a step that does not converge is cut in two halves, up to
-/// `cuts_left` times deep (the coupled step's retry). Rethrows the last failure.
-void advance(Model& model, double dt_s, int cuts_left, dda::StepStatistics& stats, FlowStepCounters& counters) {
-  try {
-    add_statistics(stats, model.system->step(dt_s, model.coupling.get()));
-    if (model.coupling) {
-      const auto& cs = model.coupling->statistics();
-      counters.fractures_wetted += cs.fractures_wetted;
-      counters.newton_iterations += cs.newton_iterations;
-      counters.newton_restarts += cs.newton_restarts;
-      counters.seconds_sensitivity += cs.seconds_sensitivity;
-      counters.seconds_flow += cs.seconds_flow;
-      counters.max_relative_residual = std::max(counters.max_relative_residual, cs.max_relative_residual);
-    }
-  } catch (const ConvergenceError& e) {
-    if (cuts_left <= 0) throw;
-    ++counters.step_cuts;
-    if (std::getenv("HFDDA_TRACE_CUTS")) std::fprintf(stderr, "step of %g s cut: %s\n", dt_s, e.what());
-    advance(model, 0.5 * dt_s, cuts_left - 1, stats, counters);
-    advance(model, 0.5 * dt_s, cuts_left - 1, stats, counters);
-  }
-}
 
 void write_summary(const Model& model, const RunOptions& options, const RunResult& r) {
   const auto& system = *model.system;
@@ -169,7 +127,7 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
   j["message"] = r.message;
   j["case_file"] = model.config.file;
   j["title"] = model.config.title;
-  j["steps"] = r.totals.steps;
+  j["steps"] = r.steps;
   j["time_s"] = r.time_s;
   j["end_time_s"] = model.config.time.end_time_s;
   j["dt_s"] = model.config.time.dt_s;
@@ -207,32 +165,20 @@ RunResult run(Model& model, const RunOptions& options) {
   outputs.write(model, 0, 0.0, false);
   for (int step = 1; step <= n_steps; ++step) {
     const double t = step * time.dt_s;
-    dda::StepStatistics st;
-    FlowStepCounters flow_counters;
+    StepStatistics st;
     try {
-      advance(model, time.dt_s, model.config.numerics.max_step_cuts, st, flow_counters);
+      st = model.step->advance(time.dt_s, model.config.numerics.max_step_cuts);
     } catch (const ConvergenceError& e) {
       char where[96];
       std::snprintf(where, sizeof where, "step %d (t = %g s to %g s): ", step, t - time.dt_s, t);
       result.message = where + std::string(e.what());
       break;
     }
-    auto& tot = result.totals;
-    tot.steps = step;
-    tot.open_close_iterations += st.open_close_iterations;
-    tot.alm_iterations += st.alm_iterations;
-    tot.alm_stalls += st.alm_stalls;
-    tot.max_alm_stall_mismatch = std::max(tot.max_alm_stall_mismatch, st.max_alm_stall_mismatch);
-    tot.factorizations += st.factorizations;
-    tot.bonds_broken += st.bonds_broken;
-    tot.vertex_vertex_activations += st.vertex_vertex_activations;
-    tot.max_active_vertex_vertex = std::max(tot.max_active_vertex_vertex, st.active_vertex_vertex);
-    tot.seconds_assembly += st.seconds_assembly;
-    tot.seconds_factorization += st.seconds_factorization;
-    tot.seconds_solve += st.seconds_solve;
+    result.steps = step;
+    result.totals.accumulate(st);
     result.time_s = t;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    history.append(history_row(model, step, t, st, flow_counters, elapsed));
+    history.append(history_row(model, step, t, st, elapsed));
     const int every = model.config.output.every_steps;
     if (step == n_steps || (every > 0 && step % every == 0)) outputs.write(model, step, t, step == n_steps);
     if (terminal)
@@ -244,7 +190,7 @@ RunResult run(Model& model, const RunOptions& options) {
   }
   if (terminal) std::fprintf(stderr, "\n");
   result.completed = result.message.empty();
-  if (!result.completed) outputs.write(model, result.totals.steps, result.time_s, true);
+  if (!result.completed) outputs.write(model, result.steps, result.time_s, true);
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   write_summary(model, options, result);
   return result;

@@ -186,7 +186,7 @@ int main(int argc, char** argv) {
       m["max_error_over_peak"] = r.profile.max_error();
       m["centre_error_over_peak"] = r.profile.centre_error();
       m["vertex_vertex_activations"] = r.run.totals.vertex_vertex_activations;
-      m["steps"] = r.run.totals.steps;
+      m["steps"] = r.run.steps;
       m["factorizations"] = r.run.totals.factorizations;
       m["wall_s"] = r.run.wall_seconds;
       m["completed"] = r.run.completed;

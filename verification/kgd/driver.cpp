@@ -360,7 +360,7 @@ int main(int argc, char** argv) {
       m["completed"] = r.completed;
       if (!r.message.empty()) m["message"] = r.message;
       m["time_reached_s"] = r.run.time_s;
-      m["steps"] = r.run.totals.steps;
+      m["steps"] = r.run.steps;
       m["wall_s"] = r.run.wall_seconds;
       m["max_mass_balance_error"] = finite_or_null(r.max_mass_balance_error());
       if (!r.samples.empty()) {

@@ -559,7 +559,7 @@ int main(int argc, char** argv) {
       m["completed"] = r.completed;
       if (!r.message.empty()) m["message"] = r.message;
       m["time_reached_s"] = r.run.time_s;
-      m["steps"] = r.run.totals.steps;
+      m["steps"] = r.run.steps;
       m["wall_s"] = r.run.wall_seconds;
       if (!r.built) continue;
       m["max_mass_balance_error"] = finite_or_null(r.max_over(&Sample::mass_balance_error));

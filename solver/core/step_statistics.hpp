@@ -1,0 +1,78 @@
+#pragma once
+// Counters and timings of one time step: the single statistics record of the solver.
+// The mechanics (open-close and contact iterations) and the fluid coupling fill their
+// parts during a step; a step cut into sub-steps, and a whole run, accumulate them
+// with accumulate(). history.csv, summary.json and the in-memory run record are all
+// made from this one struct.
+
+#include <algorithm>
+
+namespace hfdda {
+
+struct StepStatistics {
+  // --- mechanics (seed 2.2-2.3) --------------------------------------------------
+  int open_close_iterations = 0;
+  int alm_iterations = 0;           ///< linear solves of the contact iterations
+  int alm_stalls = 0;               ///< ALM solves ended by the stall test (inconsistent contact loops)
+  double max_alm_stall_mismatch = 0.0;  ///< largest gap / contact length accepted at a stall
+  /// Largest ||D(m+1) - D(m)|| / ||D(m+1)|| over the last ALM iteration of each solve
+  /// (reported; the stop test is on the contact forces, see docs/seed_errata.md, erratum 2).
+  double max_alm_displacement_change = 0.0;
+  int factorizations = 0;
+  int bonds_broken = 0;
+  int state_changes = 0;            ///< contact state changes applied
+  int coupled_state_changes = 0;    ///< fractures newly wetted by the fluid (outer iterations)
+  int vertex_vertex_activations = 0;
+  int active_vertex_vertex = 0;     ///< active at the end of the (last) step
+  int max_active_vertex_vertex = 0; ///< largest active count at the end of a step
+  double max_penetration_m = 0.0;
+
+  // --- fluid coupling (seed 2.1, 2.4) ---------------------------------------------
+  int step_cuts = 0;                ///< halvings of the step after a failed attempt
+  int fractures_wetted = 0;
+  int flow_solves = 0;              ///< one per contact iteration of a coupled step
+  int flow_newton_iterations = 0;
+  int flow_newton_restarts = 0;     ///< flow solves that needed a fallback start
+  int max_flow_nodes = 0;
+  double max_flow_residual = 0.0;   ///< largest relative mass residual of a flow solve
+
+  // --- wall-clock time [s] ----------------------------------------------------------
+  double seconds_assembly = 0.0, seconds_factorization = 0.0, seconds_solve = 0.0;
+  double seconds_sensitivity = 0.0;  ///< building S = J K^-1 B
+  double seconds_flow = 0.0;         ///< flow solves and the blocks' response to the pressures
+  double seconds_total = 0.0;
+
+  /// Adds a later part of the same span (a sub-step of a cut step, or a step of a run):
+  /// counts and times add up, maxima take the larger value, and the active
+  /// vertex-vertex count is the later one's.
+  void accumulate(const StepStatistics& later) {
+    open_close_iterations += later.open_close_iterations;
+    alm_iterations += later.alm_iterations;
+    alm_stalls += later.alm_stalls;
+    max_alm_stall_mismatch = std::max(max_alm_stall_mismatch, later.max_alm_stall_mismatch);
+    max_alm_displacement_change = std::max(max_alm_displacement_change, later.max_alm_displacement_change);
+    factorizations += later.factorizations;
+    bonds_broken += later.bonds_broken;
+    state_changes += later.state_changes;
+    coupled_state_changes += later.coupled_state_changes;
+    vertex_vertex_activations += later.vertex_vertex_activations;
+    active_vertex_vertex = later.active_vertex_vertex;
+    max_active_vertex_vertex = std::max(max_active_vertex_vertex, later.max_active_vertex_vertex);
+    max_penetration_m = std::max(max_penetration_m, later.max_penetration_m);
+    step_cuts += later.step_cuts;
+    fractures_wetted += later.fractures_wetted;
+    flow_solves += later.flow_solves;
+    flow_newton_iterations += later.flow_newton_iterations;
+    flow_newton_restarts += later.flow_newton_restarts;
+    max_flow_nodes = std::max(max_flow_nodes, later.max_flow_nodes);
+    max_flow_residual = std::max(max_flow_residual, later.max_flow_residual);
+    seconds_assembly += later.seconds_assembly;
+    seconds_factorization += later.seconds_factorization;
+    seconds_solve += later.seconds_solve;
+    seconds_sensitivity += later.seconds_sensitivity;
+    seconds_flow += later.seconds_flow;
+    seconds_total += later.seconds_total;
+  }
+};
+
+}  // namespace hfdda
