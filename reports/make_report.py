@@ -314,7 +314,7 @@ def render_case(case: dict, summ: dict, plot_result, figures: list[tuple[str, st
         lines += table(["check", "value", "criterion", "expected", "outcome", "as expected", "note"], rows)
         lines.append("")
     else:
-        lines += ["No checks recorded: a case must assert numbers (STYLE 13).", ""]
+        lines += ["No checks recorded: a case must assert numbers, not only finish.", ""]
 
     metrics = flatten(case["metrics"])
     if metrics:

@@ -15,15 +15,15 @@
 // Scalings (seed eq. 3.4):
 //   zeta(t) = (mu' / (E' t))^(1/3)                [-]
 //   psi(t)  = (E' Q0^3 / mu')^(1/6) t^(2/3)       [m]
-// Solution (seed eq. 3.3 with NOTES.md erratum 3):
+// Solution (seed eq. 3.3 with erratum 3 in docs/seed_errata.md):
 //   l(t)  = Gamma psi,                 Gamma  = 0.61524   half-length [m]
 //   w0(t) = zeta psi Gamma Omega0,     Omega0 = 1.8302    inlet width [m]
 //           (the seed's eq. 3.3 omits Gamma: Omega0 is normalised by the half-length)
 //   p0(t) = zeta E' Phi0,              Phi0   = 0.54495   inlet NET pressure [Pa]
 //           (net pressure = fluid pressure - far-field compressive stress normal to
 //           the fracture, both compression positive)
-// Independent closed forms (GEOS documentation, Adachi & Detournay 2002; NOTES
-// erratum 3), the reference used by the verification driver:
+// Independent closed forms (GEOS documentation, Adachi & Detournay 2002; erratum 3
+// in docs/seed_errata.md), the reference used by the verification driver:
 //   w0^2   = 2.1  sqrt(mu' Q0 / E') l
 //   w0 p0  = 0.62 sqrt(mu' Q0 E')
 // The two agree to rounding of the published coefficients: 2.1 vs
@@ -40,7 +40,7 @@ namespace hfdda::analytical {
 inline constexpr double kKgdMGamma = 0.61524;   ///< normalised half-length
 inline constexpr double kKgdMOmega0 = 1.8302;   ///< normalised inlet opening (per half-length)
 inline constexpr double kKgdMPhi0 = 0.54495;    ///< normalised inlet net pressure
-/// Coefficients of the closed forms of NOTES erratum 3 (GEOS docs, Adachi & Detournay 2002).
+/// Coefficients of the closed forms of erratum 3 in docs/seed_errata.md (GEOS docs, Adachi & Detournay 2002).
 inline constexpr double kKgdMWidthSquaredCoefficient = 2.1;   ///< w0^2 = 2.1 sqrt(mu' Q0 / E') l
 inline constexpr double kKgdMWidthPressureCoefficient = 0.62; ///< w0 p0 = 0.62 sqrt(mu' Q0 E')
 
@@ -57,7 +57,7 @@ struct KgdViscositySolution {
   double zeta = 0.0;                      ///< (mu' / (E' t))^(1/3), eq. 3.4 [-]
   double psi_m = 0.0;                     ///< (E' Q0^3 / mu')^(1/6) t^(2/3), eq. 3.4 [m]
   double half_length_m = 0.0;             ///< l = Gamma psi
-  /// Reference values (NOTES erratum 3): w0^2 = 2.1 sqrt(mu' Q0/E') l, w0 p0 = 0.62 sqrt(mu' Q0 E').
+  /// Reference values (erratum 3 in docs/seed_errata.md): w0^2 = 2.1 sqrt(mu' Q0/E') l, w0 p0 = 0.62 sqrt(mu' Q0 E').
   double inlet_width_m = 0.0;
   double inlet_net_pressure_Pa = 0.0;
   /// Seed-form values (eq. 3.3 corrected by erratum 3): w0 = zeta psi Gamma Omega0, p0 = zeta E' Phi0.
@@ -67,7 +67,7 @@ struct KgdViscositySolution {
 
 /// Zero-toughness, zero-leak-off KGD fracture (M-vertex) at time t > 0 for total
 /// injection rate Q0 [m^2/s] (both wings, per metre of height). Seed section 3.2,
-/// eqs. 3.2-3.4, with NOTES erratum 3 for the inlet width and net pressure.
+/// eqs. 3.2-3.4, with erratum 3 in docs/seed_errata.md for the inlet width and net pressure.
 inline KgdViscositySolution kgd_viscosity_storage(double youngs_modulus_Pa, double poissons_ratio,
                                                    double viscosity_Pa_s, double total_rate_m2_s, double time_s) {
   KgdViscositySolution s;

@@ -1,6 +1,6 @@
 #pragma once
-// Error types. Input errors always name the file, line, key and the rule broken
-// (STYLE.md item 10); internal invariants use assert().
+// Error types. Input errors are always checked and name the file, line, key and the
+// rule broken; internal invariants use assert() (checked in debug builds only).
 
 #include <stdexcept>
 #include <string>

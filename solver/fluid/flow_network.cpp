@@ -397,7 +397,7 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
       progress.max_pressure = std::max(progress.max_pressure, std::abs(x[i]));
       progress.change = std::max(progress.change, std::abs(alpha * dx[i]));
     }
-    // Relative pressure change and mass residual (NOTES erratum 2); 1 mPa absolute floor.
+    // Relative pressure change and mass residual (erratum 2 in docs/seed_errata.md); 1 mPa absolute floor.
     if (progress.residual <= tol && progress.change <= tol * progress.max_pressure + 1e-3) {
       stats.max_relative_residual = std::max(stats.max_relative_residual, progress.residual);
       return true;

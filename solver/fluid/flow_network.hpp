@@ -14,7 +14,8 @@
 //   I_i   = injected mass over the step                                       [kg]
 //   Vleak = Carter leak-off: both walls of each fracture leak C_L / sqrt(t - t0),
 //           half of the fracture charged to each end node, integrated exactly over
-//           the step: C_L L 2 (sqrt(t+dt - t0) - sqrt(t - t0))  (NOTES erratum 4)
+//           the step: C_L L 2 (sqrt(t+dt - t0) - sqrt(t - t0))
+//           (erratum 4 in docs/seed_errata.md)
 //
 // A node whose pressure would be negative becomes a zero-pressure node: p = 0 and its
 // stored mass is solved for instead (seed 2.1, Figure 2.2). Both kinds share one
@@ -30,7 +31,8 @@
 // stalls (a closed new tip whose own pressure opens the fracture behind it makes the
 // mass balance non-monotone), the solve falls back, in order, on pseudo-transient
 // continuation, restarts with the dry nodes at their neighbours' pressure, and
-// continuation in the step's inflows; FlowSolveStatistics::restarts counts them.
+// continuation in the step's inflows; FlowSolveStatistics::restarts counts them
+// (why and with what evidence: docs/design_notes.md section 3).
 //
 // Units SI, per metre of out-of-plane thickness (h = 1 m in eq. 2.2-2.3).
 

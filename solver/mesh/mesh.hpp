@@ -3,9 +3,10 @@
 // share geometric points, the joints between them (every edge shared by two blocks,
 // seed section 2.3) and the free boundary edges where far-field tractions act.
 //
-// Geometric points are the future fluid nodes (one node per point, NOTES section 4);
-// each block keeps its own copy of its corners in the mechanics, so blocks can
-// separate while the mesh topology stays fixed (contact list built once, seed 2.3 iv).
+// Geometric points are the future fluid nodes (one node per point, docs/formulation.md
+// section 4.1); each block keeps its own copy of its corners in the mechanics, so
+// blocks can separate while the mesh topology stays fixed (contact list built once,
+// seed 2.3 iv).
 
 #include <string>
 #include <vector>

@@ -222,7 +222,7 @@ TEST(FlowNetwork, NewTipThatOverflowsFillsAndPressurises) {
 TEST(FlowNetwork, NewTipsWithElasticWallsConverge) {
   // Five new tips taken from 20,000 random three-node networks (injection node, node,
   // new tip) with symmetric positive compliances dV_i/dp_j, as the block system's are,
-  // that the session-2 solver (Newton with line search alone) could not solve: the tip
+  // that Newton with line search alone (no fallbacks) could not solve: the tip
   // is closed by the mechanics, its pressure opens the fracture behind it, and Newton
   // stalled. Each must now converge (with the fallbacks of solve_mass_balance) and
   // close the ledger. Parameters: fracture 0 initial width, injection rate, dt, base
@@ -264,7 +264,7 @@ TEST(FlowNetwork, RandomElasticTipsAreSolvedAndConserveMass) {
   // symmetric positive definite with positive couplings (Betti, as the block system's),
   // the new fracture's ends start closed by up to 1 mm (node 1) and 10 um (tip), rates,
   // widths and steps span three decades (GSL Mersenne Twister, fixed seed).
-  // The session-2 solver (Newton with line search alone) leaves 73 unsolved (0.37 %),
+  // Newton with line search alone (no fallbacks) leaves 73 unsolved (0.37 %),
   // the current one 9 (0.045 %); more than 20 (0.1 %) is a regression. Every solved network must close
   // its ledger and keep its pressures non-negative.
   gsl_rng* rng = gsl_rng_alloc(gsl_rng_mt19937);
