@@ -11,6 +11,8 @@
 #include <cmath>
 #include <memory>
 
+#include "coupling/coupled_step.hpp"
+#include "coupling/prescribed_pressure.hpp"
 #include "dda/block_system.hpp"
 #include "mesh/mesh.hpp"
 
@@ -18,7 +20,15 @@ namespace {
 
 using namespace hfdda;
 
-std::unique_ptr<dda::BlockSystem> make_system(int cells_per_side) {
+/// The blocks, the crack's prescribed pressure and the step that drives them.
+struct DdaCase {
+  std::unique_ptr<dda::BlockSystem> system;
+  std::unique_ptr<coupling::PrescribedPressure> pressure;
+  std::unique_ptr<coupling::CoupledStep> stepper;
+  StepStatistics step(double dt_s) { return stepper->advance(dt_s, 0); }
+};
+
+std::unique_ptr<DdaCase> make_system(int cells_per_side) {
   const double h = 1.0, half = 0.5 * cells_per_side * h;
   mesh::StructuredMeshSpec spec;
   spec.outer = Rect{-half, half, -half, half};
@@ -46,8 +56,11 @@ std::unique_ptr<dda::BlockSystem> make_system(int cells_per_side) {
         std::abs(std::abs(m.points[edge.point_q].y()) - half) < 1e-9)
       system->add_boundary_stress(e, far_field);
   }
-  system->set_fluid_pressure(pressure, wetted);
-  return system;
+  auto c = std::make_unique<DdaCase>();
+  c->pressure = std::make_unique<coupling::PrescribedPressure>(system->mesh(), pressure, wetted);
+  c->stepper = std::make_unique<coupling::CoupledStep>(*system, std::vector<coupling::FluidLoadModel*>{c->pressure.get()});
+  c->system = std::move(system);
+  return c;
 }
 
 void add_counters(benchmark::State& state, const dda::BlockSystem& system, const StepStatistics& last) {
@@ -65,14 +78,14 @@ void add_counters(benchmark::State& state, const dda::BlockSystem& system, const
 void BM_DdaFirstStep(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   StepStatistics last;
-  std::unique_ptr<dda::BlockSystem> system;
+  std::unique_ptr<DdaCase> system;
   for (auto _ : state) {
     state.PauseTiming();
     system = make_system(n);
     state.ResumeTiming();
     last = system->step(1.0);
   }
-  add_counters(state, *system, last);
+  add_counters(state, *system->system, last);
   if (4 * n * n >= 16000) state.counters["target_s"] = 1.0;
 }
 
@@ -82,7 +95,7 @@ void BM_DdaSteadyStep(benchmark::State& state) {
   system->step(1.0);
   StepStatistics last;
   for (auto _ : state) last = system->step(1.0);
-  add_counters(state, *system, last);
+  add_counters(state, *system->system, last);
 }
 
 // One numeric CHOLMOD factorisation of K (symbolic analysis reused): the floor.
@@ -90,10 +103,10 @@ void BM_FactorizeK(benchmark::State& state) {
   auto system = make_system(static_cast<int>(state.range(0)));
   system->step(1.0);
   dda::SpdSolver solver;
-  solver.factorize(system->stiffness().matrix());  // symbolic analysis outside the loop
-  for (auto _ : state) solver.factorize(system->stiffness().matrix());
-  state.counters["blocks"] = system->n_blocks();
-  state.counters["nnz_K_lower"] = static_cast<double>(system->stiffness().matrix().nonZeros());
+  solver.factorize(system->system->stiffness().matrix());  // symbolic analysis outside the loop
+  for (auto _ : state) solver.factorize(system->system->stiffness().matrix());
+  state.counters["blocks"] = system->system->n_blocks();
+  state.counters["nnz_K_lower"] = static_cast<double>(system->system->stiffness().matrix().nonZeros());
 }
 
 // Cells per side n gives 4 n^2 blocks: 16 -> 1024, 32 -> 4096, 64 -> 16384.

@@ -1,13 +1,49 @@
 #include "coupling/coupled_step.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <sstream>
 
 #include "core/errors.hpp"
 
 namespace hfdda::coupling {
 
-CoupledStep::CoupledStep(dda::BlockSystem& mechanics, HydroMechanicalCoupling* flow, bool trace_cuts)
-    : mechanics_(mechanics), flow_(flow), trace_cuts_(trace_cuts) {}
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The round's changes in the order the open-close check makes them: open-close
+/// changes and shear failures by contact, then the tension failures (seed 2.3 iii).
+std::vector<dda::ContactChange> merge_failures(const std::vector<dda::ContactChange>& open_close,
+                                               const std::vector<fracture::BondFailure>& failures) {
+  std::vector<dda::ContactChange> changes;
+  changes.reserve(open_close.size() + failures.size());
+  auto next = open_close.begin();
+  for (const auto& f : failures) {
+    if (f.mode != fracture::FailureMode::shear) continue;
+    for (; next != open_close.end() && next->contact < f.contact; ++next) changes.push_back(*next);
+    changes.push_back({f.contact, dda::ContactState::sliding, true, f.friction_sign});
+  }
+  changes.insert(changes.end(), next, open_close.end());
+  for (const auto& f : failures)
+    if (f.mode == fracture::FailureMode::tension) changes.push_back({f.contact, dda::ContactState::open, true});
+  return changes;
+}
+
+}  // namespace
+
+CoupledStep::CoupledStep(dda::BlockSystem& mechanics, std::vector<FluidLoadModel*> fluids,
+                         fracture::FractureRules rules, bool trace_cuts)
+    : mechanics_(mechanics), fluids_(std::move(fluids)), rules_(rules), trace_cuts_(trace_cuts) {
+  const auto& joints = mechanics_.mesh().joints;
+  bond_strength_.reserve(joints.size());
+  for (const auto& joint : joints) bond_strength_.push_back(fracture::bond_strength(joint.properties));
+  pressurised_.assign(mechanics_.mesh().points.size(), 0);
+}
 
 StepStatistics CoupledStep::advance(double dt_s, int max_step_cuts) {
   StepStatistics stats;
@@ -17,19 +53,7 @@ StepStatistics CoupledStep::advance(double dt_s, int max_step_cuts) {
 
 void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats) {
   try {
-    StepStatistics step = mechanics_.step(dt_s, flow_);
-    if (flow_) {
-      const CouplingStatistics& cs = flow_->statistics();
-      step.fractures_wetted += cs.fractures_wetted;
-      step.flow_solves += cs.flow_solves;
-      step.flow_newton_iterations += cs.newton_iterations;
-      step.flow_newton_restarts += cs.newton_restarts;
-      step.max_flow_nodes = std::max(step.max_flow_nodes, cs.max_nodes);
-      step.max_flow_residual = std::max(step.max_flow_residual, cs.max_relative_residual);
-      step.seconds_sensitivity += cs.seconds_sensitivity;
-      step.seconds_flow += cs.seconds_flow;
-    }
-    stats.accumulate(step);
+    stats.accumulate(attempt(dt_s));
   } catch (const ConvergenceError& e) {
     if (cuts_left <= 0) throw;
     ++stats.step_cuts;
@@ -37,6 +61,110 @@ void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats
     advance_into(0.5 * dt_s, cuts_left - 1, stats);
     advance_into(0.5 * dt_s, cuts_left - 1, stats);
   }
+}
+
+StepStatistics CoupledStep::attempt(double dt_s) {
+  const auto step_start = Clock::now();
+  StepStatistics stats;
+  try {
+    const auto start = Clock::now();
+    mechanics_.begin_step(dt_s);
+    for (FluidLoadModel* f : fluids_) f->begin_step(mechanics_, dt_s);
+    stats.seconds_assembly += seconds_since(start);
+    const Eigen::VectorXd d = open_close_iterations(stats);
+    mechanics_.commit(d, dt_s, stats);
+    for (FluidLoadModel* f : fluids_) f->commit(mechanics_);
+  } catch (...) {
+    mechanics_.roll_back();
+    for (FluidLoadModel* f : fluids_) f->roll_back();
+    throw;
+  }
+  stats.seconds_total = seconds_since(step_start);
+  for (FluidLoadModel* f : fluids_) f->add_statistics(stats);
+  return stats;
+}
+
+Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {
+  const int max_iterations = mechanics_.settings().max_open_close_iterations;
+  bool stiffness_changed = true;
+  for (int oc = 1; oc <= max_iterations; ++oc) {
+    stats.open_close_iterations = oc;
+    if (stiffness_changed) mechanics_.assemble_and_factorise(stats);
+    const auto start = Clock::now();
+    for (FluidLoadModel* f : fluids_) f->prepare(mechanics_, stiffness_changed);
+    stats.seconds_solve += seconds_since(start);
+    Eigen::VectorXd d = solve_contacts(stats);
+    const int contact_changes = update_contact_states(d, stats);
+    int coupled_changes = 0;
+    for (FluidLoadModel* f : fluids_) coupled_changes += f->update_states(mechanics_);
+    stats.coupled_state_changes += coupled_changes;
+    if (contact_changes + coupled_changes == 0) return d;
+    stiffness_changed = contact_changes > 0;
+  }
+  std::ostringstream msg;
+  msg << "open-close iterations did not converge in " << max_iterations
+      << " iterations: contacts still changing state, e.g. " << mechanics_.first_change();
+  throw ConvergenceError(msg.str());
+}
+
+Eigen::VectorXd CoupledStep::solve_contacts(StepStatistics& stats) {
+  Eigen::VectorXd d, d_previous;
+  double displacement_change = 0.0;
+  mechanics_.begin_contact_iterations();
+  for (int it = 0;; ++it) {
+    const Eigen::VectorXd rhs = mechanics_.contact_rhs();
+    const auto start = Clock::now();
+    d_previous.swap(d);
+    d = mechanics_.solver().solve(rhs);
+    for (FluidLoadModel* f : fluids_) f->respond(mechanics_, d);
+    stats.seconds_solve += seconds_since(start);
+    ++stats.alm_iterations;
+    // ||D(m+1) - D(m)|| / ||D(m+1)|| of the inner iterations (NOTES erratum 2), reported.
+    const double d_norm = d.norm();
+    displacement_change = it == 0 || d_norm == 0.0 ? 0.0 : (d - d_previous).norm() / d_norm;
+    if (mechanics_.update_multipliers(d, it, stats) != dda::ContactIteration::again) break;
+  }
+  stats.max_alm_displacement_change = std::max(stats.max_alm_displacement_change, displacement_change);
+  return d;
+}
+
+int CoupledStep::update_contact_states(const Eigen::VectorXd& d, StepStatistics& stats) {
+  const dda::OpenCloseTrial trial = mechanics_.trial_contacts(d, stats);
+  const auto failures = fracture::failing_bonds(intact_bonds(trial), pressurised_points(), rules_);
+  return mechanics_.apply_state_changes(d, merge_failures(trial.changes, failures), stats);
+}
+
+std::vector<fracture::Bond> CoupledStep::intact_bonds(const dda::OpenCloseTrial& trial) const {
+  const auto& contacts = mechanics_.contacts();
+  const auto& joints = mechanics_.mesh().joints;
+  std::vector<fracture::Bond> bonds;
+  for (int ci = 0; ci < static_cast<int>(trial.tractions.size()); ++ci) {
+    const dda::Contact& c = contacts[ci];
+    if (c.state != dda::ContactState::locked || !c.bonded) continue;
+    const auto& joint = joints[c.joint];
+    fracture::Bond b;
+    b.contact = ci;
+    b.point = c.point;
+    b.other_point = c.end == 0 ? joint.point_q : joint.point_p;
+    b.length_m = c.length_m;
+    b.normal_N = trial.tractions[ci].normal_N;
+    b.shear_N = trial.tractions[ci].shear_N;
+    b.strength = bond_strength_[c.joint];
+    b.breakable = joint.properties.breakable;
+    b.open_neighbour = rules_.failure_needs_open_neighbour_and_fluid && mechanics_.has_open_neighbour(ci);
+    bonds.push_back(b);
+  }
+  return bonds;
+}
+
+const std::vector<char>& CoupledStep::pressurised_points() {
+  if (fluids_.size() == 1) return fluids_.front()->pressurised_points();
+  std::fill(pressurised_.begin(), pressurised_.end(), 0);
+  for (const FluidLoadModel* f : fluids_) {
+    const auto& mask = f->pressurised_points();
+    for (std::size_t p = 0; p < pressurised_.size(); ++p) pressurised_[p] |= mask[p];
+  }
+  return pressurised_;
 }
 
 }  // namespace hfdda::coupling

@@ -1,19 +1,30 @@
 #pragma once
-// One time step of a case: the blocks, with the fluid network when the case has one,
-// and the step cut-back that retries a step that did not converge (seed 2.4).
+// One time step of a case (seed 2.4, Figures 2.7-2.8): the composition of the blocks
+// (dda::BlockSystem), the fluid models acting on them (flow network, prescribed
+// pressure) and the bond failures (fracture/), with the step cut-back that retries a
+// step that did not converge.
+//
+// A step: mechanics.begin_step, fluids' begin_step; then open-close iterations, each
+//   [assemble and factorise K if the contact states changed] -> fluids' prepare ->
+//   contact iterations (rhs -> K^-1 -> fluids' respond -> multiplier update) ->
+//   trial tractions -> bond failures -> contact state changes -> fluids' state changes
+// until nothing changes; then commit everything, or roll everything back.
 
-#include <string>
+#include <vector>
 
 #include "core/step_statistics.hpp"
-#include "coupling/hydro_mechanical_coupling.hpp"
+#include "coupling/fluid_load_model.hpp"
 #include "dda/block_system.hpp"
+#include "fracture/fracture_criteria.hpp"
 
 namespace hfdda::coupling {
 
 class CoupledStep {
  public:
-  /// `flow` may be null (mechanics alone). Both must outlive the step object.
-  CoupledStep(dda::BlockSystem& mechanics, HydroMechanicalCoupling* flow, bool trace_cuts = false);
+  /// `fluids` may be empty (mechanics alone); their loads add up and a point is
+  /// pressurised if any of them pressurises it. All must outlive the step object.
+  CoupledStep(dda::BlockSystem& mechanics, std::vector<FluidLoadModel*> fluids, fracture::FractureRules rules = {},
+              bool trace_cuts = false);
 
   /// Advances by dt. A step that does not converge is cut in two halves, recursively
   /// up to `max_step_cuts` levels deep; the statistics of every sub-step are summed.
@@ -23,10 +34,23 @@ class CoupledStep {
 
  private:
   void advance_into(double dt_s, int cuts_left, StepStatistics& stats);
+  /// One step without cut-back; throws ConvergenceError after rolling everything back.
+  StepStatistics attempt(double dt_s);
+  /// Open-close iterations until no state changes; the converged displacement.
+  Eigen::VectorXd open_close_iterations(StepStatistics& stats);
+  /// The contact iterations (ALM or penalty) of one open-close iteration.
+  Eigen::VectorXd solve_contacts(StepStatistics& stats);
+  /// Trial tractions, bond failures and contact state changes; returns the count applied.
+  int update_contact_states(const Eigen::VectorXd& d, StepStatistics& stats);
+  std::vector<fracture::Bond> intact_bonds(const dda::OpenCloseTrial& trial) const;
+  const std::vector<char>& pressurised_points();
 
   dda::BlockSystem& mechanics_;
-  HydroMechanicalCoupling* flow_;
+  std::vector<FluidLoadModel*> fluids_;
+  fracture::FractureRules rules_;
   bool trace_cuts_;
+  std::vector<fracture::BondStrength> bond_strength_;  // per joint
+  std::vector<char> pressurised_;                      // union of the fluids' masks
 };
 
 }  // namespace hfdda::coupling

@@ -22,7 +22,7 @@ void HydroMechanicalCoupling::refresh_pressurised() {
   for (int point : network_.trial_nodes()) pressurised_[point] = network_.trial_pressurised(point);
 }
 
-void HydroMechanicalCoupling::begin_step(const dda::BlockSystem& system, double dt_s) {
+void HydroMechanicalCoupling::begin_step(dda::BlockSystem& system, double dt_s) {
   if (system.mesh().joints.size() != static_cast<std::size_t>(network_.n_fractures()))
     throw std::invalid_argument("HydroMechanicalCoupling: the network's fractures must be the mesh joints");
   stats_ = {};
@@ -31,9 +31,9 @@ void HydroMechanicalCoupling::begin_step(const dda::BlockSystem& system, double 
   refresh_pressurised();
 }
 
-void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, const dda::SpdSolver& solver,
-                                      bool stiffness_changed) {
+void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiffness_changed) {
   if (!stiffness_changed && !topology_changed_) return;
+  const dda::SpdSolver& solver = system.solver();
   const auto start = Clock::now();
   const auto& fractures = network_.trial_fractures();
   const auto& nodes = network_.trial_nodes();
@@ -82,15 +82,14 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, const dda:
   stats_.seconds_sensitivity += seconds_since(start);
 }
 
-Eigen::VectorXd HydroMechanicalCoupling::solve(const dda::BlockSystem& system, const dda::SpdSolver& solver,
-                                               const Eigen::VectorXd& d_mechanical) {
+void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::VectorXd& d) {
   const auto start = Clock::now();
   const int n_ends = static_cast<int>(gaps_.size());
   Eigen::VectorXd base(n_ends);
   for (int e = 0; e < n_ends; ++e) {
     const auto& g = gaps_[e];
-    base[e] = g.gap0_m + g.row_a.dot(d_mechanical.segment<6>(6 * g.block_a)) +
-              g.row_b.dot(d_mechanical.segment<6>(6 * g.block_b));
+    base[e] = g.gap0_m + g.row_a.dot(d.segment<6>(6 * g.block_a)) +
+              g.row_b.dot(d.segment<6>(6 * g.block_b));
   }
   const fluid::FlowSolveStatistics fs = network_.solve(base, sensitivity_);
   ++stats_.flow_solves;
@@ -103,9 +102,8 @@ Eigen::VectorXd HydroMechanicalCoupling::solve(const dda::BlockSystem& system, c
   work_.setZero(6 * system.n_blocks());
   for (int i = 0; i < p.size(); ++i)
     for (const NodeLoad& l : loads_[i]) work_.segment<6>(6 * l.block) += p[i] * l.force;
-  Eigen::VectorXd d = d_mechanical + solver.solve(work_);
+  d += system.solver().solve(work_);  // the mechanical displacement plus K^-1 B p
   stats_.seconds_flow += seconds_since(start);
-  return d;
 }
 
 int HydroMechanicalCoupling::update_states(const dda::BlockSystem& system) {
@@ -133,6 +131,17 @@ void HydroMechanicalCoupling::commit(const dda::BlockSystem&) {
   refresh_pressurised();
 }
 
-void HydroMechanicalCoupling::abort() { topology_changed_ = true; }
+void HydroMechanicalCoupling::roll_back() { topology_changed_ = true; }
+
+void HydroMechanicalCoupling::add_statistics(StepStatistics& step) const {
+  step.fractures_wetted += stats_.fractures_wetted;
+  step.flow_solves += stats_.flow_solves;
+  step.flow_newton_iterations += stats_.newton_iterations;
+  step.flow_newton_restarts += stats_.newton_restarts;
+  step.max_flow_nodes = std::max(step.max_flow_nodes, stats_.max_nodes);
+  step.max_flow_residual = std::max(step.max_flow_residual, stats_.max_relative_residual);
+  step.seconds_sensitivity += stats_.seconds_sensitivity;
+  step.seconds_flow += stats_.seconds_flow;
+}
 
 }  // namespace hfdda::coupling

@@ -10,12 +10,13 @@
 // where J holds the linearised gaps. The coupling computes S = J K^-1 B once per
 // factorisation of K (one multi-right-hand-side solve) and hands w(p) to the flow
 // network, whose Newton iteration solves the coupled mass balance exactly; the block
-// displacement follows with one more solve. Outer iterations (the block system's
+// displacement follows with one more solve. Outer iterations (the coupled step's
 // open-close loop) add the joints the fluid reaches: a joint joins the network once
 // one of its end contacts is open at a pressurised node (Figure 2.8).
 
 #include <vector>
 
+#include "coupling/fluid_load_model.hpp"
 #include "dda/block_system.hpp"
 #include "fluid/flow_network.hpp"
 
@@ -34,18 +35,20 @@ struct CouplingStatistics {
 
 /// Couples a FlowNetwork whose fractures are the mesh joints (same indices) with the
 /// block system it is passed to.
-class HydroMechanicalCoupling final : public dda::StepCoupling {
+class HydroMechanicalCoupling final : public FluidLoadModel {
  public:
   explicit HydroMechanicalCoupling(fluid::FlowNetwork& network);
 
-  void begin_step(const dda::BlockSystem& system, double dt_s) override;
-  void prepare(const dda::BlockSystem& system, const dda::SpdSolver& solver, bool stiffness_changed) override;
-  Eigen::VectorXd solve(const dda::BlockSystem& system, const dda::SpdSolver& solver,
-                        const Eigen::VectorXd& mechanical_displacement) override;
+  void begin_step(dda::BlockSystem& system, double dt_s) override;
+  void prepare(const dda::BlockSystem& system, bool stiffness_changed) override;
+  /// d += K^-1 B p for the pressures the flow solve finds with the apertures of d.
+  void respond(const dda::BlockSystem& system, Eigen::VectorXd& d) override;
   int update_states(const dda::BlockSystem& system) override;
   const std::vector<char>& pressurised_points() const override { return pressurised_; }
+  bool wetted(int joint) const override { return network_.wetted(joint); }
   void commit(const dda::BlockSystem& system) override;
-  void abort() override;
+  void roll_back() override;
+  void add_statistics(StepStatistics& step) const override;
 
   /// Statistics of the last step attempt (committed or not).
   const CouplingStatistics& statistics() const { return stats_; }

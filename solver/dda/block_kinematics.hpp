@@ -28,6 +28,12 @@ inline Mat26 displacement_matrix(const Vec2& point, const Vec2& centroid) {
   return t;
 }
 
+/// Outward (right-hand) unit normal of an edge of a counter-clockwise polygon.
+inline Vec2 outward_normal(const Vec2& from, const Vec2& to) {
+  const Vec2 t = (to - from).normalized();
+  return Vec2(t.y(), -t.x());
+}
+
 /// Plane-strain elasticity matrix relating (sxx, syy, sxy) to (ex, ey, gxy), unit thickness.
 Eigen::Matrix3d plane_strain_elasticity(double youngs_modulus_Pa, double poissons_ratio);
 

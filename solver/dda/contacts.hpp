@@ -53,9 +53,8 @@ struct Contact {
   std::array<VertexEdgeSpring, 2> springs;
   double length_m = 0.0;   ///< contact length Lc (half the joint length)
   ContactState state = ContactState::locked;
-  bool bonded = true;      ///< bond intact: T0 and C0 act
-  bool breakable = true;
-  double tensile_strength_Pa = 0.0, cohesion_Pa = 0.0, tan_friction = 0.0;
+  bool bonded = true;      ///< bond intact: T0 and C0 act (its strength: fracture/)
+  double cohesion_Pa = 0.0, tan_friction = 0.0;  ///< of the sliding law (C0 while bonded)
   double friction_sign = 1.0;  ///< sense of the sliding friction force
 
   // Vertex-vertex candidates only: the two blocks and their corners at `point`.

@@ -118,6 +118,25 @@ void set_domain(Spec& spec, const io::CaseConfig& c) {
   if (spec.has_inner) spec.inner = *c.domain.inner;
 }
 
+/// The mesh point of injection i: the single place of the mesh-point rules of an
+/// injection (io/ checks only that it lies in the domain). It must be a mesh point,
+/// at the end of a joint of a fluid-filled fracture (`filled_point`).
+int injection_point(const mesh::Mesh& m, const io::CaseConfig& c, std::size_t i,
+                    const std::vector<char>& filled_point) {
+  const auto& inj = c.injections[i];
+  const std::string key = "injections[" + std::to_string(i) + "].at";
+  const int point = mesh::nearest_point(m, inj.at);
+  if ((m.points[point] - inj.at).norm() > 1e-6 * domain_size(c))
+    throw InputError(c.file, inj.line, key,
+                     "injection point " + format_point(inj.at) + " is not a mesh point (nearest " +
+                         format_point(m.points[point]) + "); put it on the end of a fracture joint");
+  if (!filled_point[point])
+    throw InputError(c.file, inj.line, key,
+                     "injection point " + format_point(inj.at) +
+                         " must lie on a fracture with `fluid_filled: true` (the fluid needs somewhere to go)");
+  return point;
+}
+
 /// The fluid network over the joints, its initially filled fractures, injection points
 /// and probes (seed 2.1, 3.2).
 void build_flow_network(Model& model, const io::CaseConfig& c) {
@@ -147,20 +166,9 @@ void build_flow_network(Model& model, const io::CaseConfig& c) {
     model.flow->fill_initially(static_cast<int>(j), c.fractures[f].initial_width_m);
     filled_point[m.joints[j].point_p] = filled_point[m.joints[j].point_q] = 1;
   }
-  const double tol = 1e-6 * domain_size(c);
   for (std::size_t i = 0; i < c.injections.size(); ++i) {
-    const auto& inj = c.injections[i];
-    const std::string key = "injections[" + std::to_string(i) + "].at";
-    const int point = mesh::nearest_point(m, inj.at);
-    if ((m.points[point] - inj.at).norm() > tol)
-      throw InputError(c.file, inj.line, key,
-                       "injection point " + format_point(inj.at) + " is not a mesh point (nearest " +
-                           format_point(m.points[point]) + "); put it on the end of a fracture joint");
-    if (!filled_point[point])
-      throw InputError(c.file, inj.line, key,
-                       "injection point " + format_point(inj.at) +
-                           " must lie on a fracture with `fluid_filled: true` (the fluid needs somewhere to go)");
-    model.flow->add_injection({point, inj.mass_rate_kg_s, inj.start_time_s});
+    const int point = injection_point(m, c, i, filled_point);
+    model.flow->add_injection({point, c.injections[i].mass_rate_kg_s, c.injections[i].start_time_s});
     model.injection_points.push_back(point);
   }
   for (const auto& probe : c.probes) model.probe_points.push_back(mesh::nearest_point(m, probe.at));
@@ -209,10 +217,15 @@ dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   s.alm_force_tolerance = c.numerics.alm_force_tolerance;
   s.max_alm_iterations = c.numerics.max_alm_iterations;
   s.max_open_close_iterations = c.numerics.max_open_close_iterations;
-  s.tie_tolerance = c.numerics.tie_tolerance;
-  s.shear_failure_of_intact_joints = c.numerics.shear_failure_of_intact_joints;
   s.dynamic = c.numerics.analysis == io::AnalysisKind::dynamic_analysis;
   return s;
+}
+
+fracture::FractureRules fracture_rules(const io::CaseConfig& c) {
+  fracture::FractureRules r;
+  r.tie_tolerance = c.numerics.tie_tolerance;
+  r.shear_failure_of_intact_joints = c.numerics.shear_failure_of_intact_joints;
+  return r;
 }
 
 Model build_model(const io::CaseConfig& c) {
@@ -245,18 +258,17 @@ Model build_model(const io::CaseConfig& c) {
   }
 
   // Prescribed fluid pressure: on both faces of the fracture's joints and at their points.
-  std::vector<double> point_pressure(m.points.size(), 0.0);
-  std::vector<char> wetted(m.joints.size(), 0);
-  for (std::size_t j = 0; j < m.joints.size(); ++j) {
-    const double p = m.joints[j].properties.prescribed_pressure_Pa;
-    if (p < 0.0) continue;
-    wetted[j] = 1;
-    point_pressure[m.joints[j].point_p] = std::max(point_pressure[m.joints[j].point_p], p);
-    point_pressure[m.joints[j].point_q] = std::max(point_pressure[m.joints[j].point_q], p);
+  std::vector<coupling::FluidLoadModel*> fluids;
+  auto prescribed = coupling::PrescribedPressure::from_joint_properties(system.mesh());
+  if (prescribed.any_wetted()) {
+    model.prescribed = std::make_unique<coupling::PrescribedPressure>(std::move(prescribed));
+    fluids.push_back(model.prescribed.get());
   }
-  system.set_fluid_pressure(std::move(point_pressure), std::move(wetted));
-  if (c.fluid) build_flow_network(model, c);
-  model.step = std::make_unique<coupling::CoupledStep>(system, model.coupling.get(),
+  if (c.fluid) {
+    build_flow_network(model, c);
+    fluids.push_back(model.coupling.get());
+  }
+  model.step = std::make_unique<coupling::CoupledStep>(system, std::move(fluids), fracture_rules(c),
                                                        std::getenv("HFDDA_TRACE_CUTS") != nullptr);
   model.mesh_seconds_ms = static_cast<int>(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

@@ -10,7 +10,9 @@
 
 #include "coupling/coupled_step.hpp"
 #include "coupling/hydro_mechanical_coupling.hpp"
+#include "coupling/prescribed_pressure.hpp"
 #include "dda/block_system.hpp"
+#include "fracture/fracture_criteria.hpp"
 #include "fluid/flow_network.hpp"
 #include "io/case_config.hpp"
 #include "mesh/mesh.hpp"
@@ -25,9 +27,11 @@ struct Model {
   // Flow network, when the case has a `fluid` section (fractures = mesh joints).
   std::unique_ptr<fluid::FlowNetwork> flow;
   std::unique_ptr<coupling::HydroMechanicalCoupling> coupling;
+  /// Pressures prescribed on fractures (`pressure:`), when some joint has one.
+  std::unique_ptr<coupling::PrescribedPressure> prescribed;
   std::vector<int> injection_points;  ///< mesh point of each config.injections item
   std::vector<int> probe_points;      ///< mesh point of each config.probes item
-  /// The time step of the case (blocks and, if any, the fluid coupling) with cut-back.
+  /// The time step of the case (blocks, fluid models, bond failures) with cut-back.
   std::unique_ptr<coupling::CoupledStep> step;
 };
 
@@ -40,5 +44,8 @@ mesh::Mesh build_case_mesh(const io::CaseConfig& config);
 /// Mechanics settings of a case: spring constants are factors times the largest
 /// Young's modulus of its materials (seed Table 3.1: k = 100 E).
 dda::MechanicsSettings mechanics_settings(const io::CaseConfig& config);
+
+/// The failure rules of seed 2.3 a case sets (numerics section).
+fracture::FractureRules fracture_rules(const io::CaseConfig& config);
 
 }  // namespace hfdda::simulation

@@ -46,7 +46,8 @@ std::vector<io::JointRow> joint_rows(const dda::BlockSystem& s, const fluid::Flo
     r.state_q = dda::to_string(contact_q.state);
     r.broken = !contact_p.bonded || !contact_q.bonded;
     r.natural = joint.properties.natural;
-    r.fluid = flow ? flow->wetted(static_cast<int>(j)) : s.joint_wetted(static_cast<int>(j));
+    // Without a flow network, fluid is where a pressure is prescribed (coupling::PrescribedPressure).
+    r.fluid = flow ? flow->wetted(static_cast<int>(j)) : joint.properties.prescribed_pressure_Pa >= 0.0;
     if (flow && r.fluid) {
       r.pressure_p_Pa = flow->pressure(joint.point_p);
       r.pressure_q_Pa = flow->pressure(joint.point_q);

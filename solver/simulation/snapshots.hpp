@@ -10,7 +10,8 @@
 namespace hfdda::simulation {
 
 io::BlockFrame block_frame(const dda::BlockSystem& system);
-/// One row per joint; with a flow network, "fluid" marks the joints it has wetted.
+/// One row per joint; with a flow network, "fluid" marks the joints it has wetted,
+/// without one the joints with a prescribed pressure.
 std::vector<io::JointRow> joint_rows(const dda::BlockSystem& system, const fluid::FlowNetwork* flow = nullptr);
 
 /// Aperture at each geometric point along a set of joints: mean of the face

@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "coupling/coupled_step.hpp"
+#include "coupling/prescribed_pressure.hpp"
 #include "dda/block_system.hpp"
 #include "io/case_config.hpp"
 #include "simulation/model.hpp"
@@ -34,7 +36,7 @@ time: {dt: 1.0, end_time: 1.0}
 TEST(CoupledStep, MatchesMechanicsLoadedByTheSolvedPressures) {
   io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
   simulation::Model coupled = simulation::build_model(config);
-  coupled.system->step(1.0, coupled.coupling.get());
+  coupled.step->advance(1.0, 0);
   const fluid::FlowNetwork& flow = *coupled.flow;
   const auto& mesh = coupled.system->mesh();
 
@@ -55,8 +57,8 @@ TEST(CoupledStep, MatchesMechanicsLoadedByTheSolvedPressures) {
     pressure[mesh.joints[j].point_q] = flow.pressure(mesh.joints[j].point_q);
   }
   ASSERT_EQ(crack_joints, 6);
-  loaded.system->set_fluid_pressure(pressure, wetted);
-  loaded.system->step(1.0);
+  coupling::PrescribedPressure prescribed(loaded.system->mesh(), pressure, wetted);
+  coupling::CoupledStep(*loaded.system, {&prescribed}).advance(1.0, 0);
 
   double max_gap = 0.0, max_difference = 0.0;
   for (std::size_t j = 0; j < mesh.joints.size(); ++j) {
@@ -87,7 +89,7 @@ TEST(CoupledStep, ClosedCrackFillsAndOpensStepAfterStep) {
   const int far_end = mesh::nearest_point(mesh, Vec2(2, 0));
   double last_volume = 0.0, volume = 0.0;
   for (int step = 0; step < 8; ++step) {
-    model.system->step(1.0, model.coupling.get());
+    model.step->advance(1.0, 0);
     volume = 0.0;
     for (int j = 0; j < model.flow->n_fractures(); ++j)
       if (model.flow->wetted(j))
@@ -112,7 +114,7 @@ fixed_points: [[-5, -5]]
 time: {dt: 1.0, end_time: 1.0}
 )";
   simulation::Model model = simulation::build_model(io::load_case_text(text, "insitu.yaml"));
-  const auto stats = model.system->step(1.0);
+  const auto stats = model.step->advance(1.0, 0);
   EXPECT_EQ(stats.state_changes, 0);
   double max_d = 0.0;
   for (const auto& d : model.system->last_step_displacement()) max_d = std::max(max_d, d.head<2>().cwiseAbs().maxCoeff());
@@ -136,7 +138,7 @@ fixed_points: [[-5, -5], [5, -5], [5, 5], [-5, 5]]
 time: {dt: 1.0, end_time: 1.0}
 )";
   simulation::Model model = simulation::build_model(io::load_case_text(text, "boundary.yaml"));
-  model.system->step(1.0);
+  model.step->advance(1.0, 0);
   double max_deviation = 0.0;
   for (int b = 0; b < model.system->n_blocks(); ++b)
     max_deviation = std::max(max_deviation, std::abs(model.system->stress(b)[0] + 5.0e6));

@@ -1,0 +1,198 @@
+// Contact springs and the contact iterations of one open-close iteration: the spring
+// linearisation, K's contact terms, and the Augmented Lagrangian (Uzawa, seed eq.
+// 2.19) or penalty right-hand sides and multiplier updates.
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "dda/block_system.hpp"
+
+namespace hfdda::dda {
+
+namespace {
+
+/// Largest gap or shear left by stalled Augmented Lagrangian iterations (inconsistent
+/// loops of closed contacts, see update_multipliers), relative to the contact's length:
+/// 1e-6 is well below the elastic strains of rock under stress (1e-4 at 2.5 MPa and 25 GPa).
+constexpr double kAlmStallMismatch = 1.0e-6;
+
+void add_spring_to_rhs(Eigen::VectorXd& f, const VertexEdgeSpring& s, double weight, double force_normal,
+                       double force_shear) {
+  // Pi = w (lambda g + k/2 g^2) with g = g0 + e.D gives F -= w (lambda + k g0) e^T.
+  auto fv = f.segment<6>(6 * s.vertex_block);
+  auto fe = f.segment<6>(6 * s.edge_block);
+  fv -= weight * force_normal * s.gap_vertex.transpose();
+  fe -= weight * force_normal * s.gap_edge.transpose();
+  fv -= weight * force_shear * s.shear_vertex.transpose();
+  fe -= weight * force_shear * s.shear_edge.transpose();
+}
+
+}  // namespace
+
+void BlockSystem::rebuild_pattern() {
+  stiffness_ = BlockSparseMatrix(n_blocks(), contacts_.couplings());
+  solver_.reset_pattern();
+  for (auto& c : contacts_.all())
+    if (c.joint >= 0 || c.vertex_vertex_active)
+      for (int k = 0; k < c.n_springs; ++k)
+        c.springs[k].slot = stiffness_.coupling_slot(c.springs[k].vertex_block, c.springs[k].edge_block);
+  contacts_.pattern_rebuilt();
+}
+
+void BlockSystem::linearise_spring(VertexEdgeSpring& s) const {
+  linearise_vertex_edge(corner(s.vertex_block, s.vertex_corner), corner(s.edge_block, s.edge_corner),
+                        blocks_.next_corner(s.edge_block, s.edge_corner), moments_[s.vertex_block].centroid,
+                        moments_[s.edge_block].centroid, s);
+}
+
+void BlockSystem::linearise_contacts() {
+  for (auto& c : contacts_.all()) {
+    if (c.joint < 0 && !c.vertex_vertex_active) continue;
+    for (int k = 0; k < c.n_springs; ++k) linearise_spring(c.springs[k]);
+  }
+}
+
+void BlockSystem::assemble_contacts() {
+  stiffness_.set_zero();
+  for (int b = 0; b < n_blocks(); ++b) stiffness_.add_diagonal(b, block_matrix_[b]);
+  const double kn = settings_.normal_stiffness_N_m, ks = settings_.shear_stiffness_N_m;
+  for (const auto& c : contacts_.all()) {
+    if (c.state == ContactState::open) continue;
+    const double w = 1.0 / c.n_springs;
+    for (int k = 0; k < c.n_springs; ++k) {
+      const auto& s = c.springs[k];
+      auto add = [&](double stiffness, const Row6& ev, const Row6& ee) {
+        stiffness_.add_diagonal(s.vertex_block, w * stiffness * ev.transpose() * ev);
+        stiffness_.add_diagonal(s.edge_block, w * stiffness * ee.transpose() * ee);
+        stiffness_.add_coupling(s.slot, s.vertex_block, s.edge_block, w * stiffness * ev.transpose() * ee);
+      };
+      add(kn, s.gap_vertex, s.gap_edge);
+      if (c.state == ContactState::locked) add(ks, s.shear_vertex, s.shear_edge);
+    }
+  }
+}
+
+double BlockSystem::spring_gap(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const {
+  return s.gap0 + s.gap_vertex.dot(d.segment<6>(6 * s.vertex_block)) + s.gap_edge.dot(d.segment<6>(6 * s.edge_block));
+}
+
+double BlockSystem::spring_shear(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const {
+  return s.shear0 + s.shear_vertex.dot(d.segment<6>(6 * s.vertex_block)) +
+         s.shear_edge.dot(d.segment<6>(6 * s.edge_block));
+}
+
+void BlockSystem::begin_contact_iterations() {
+  // Per contact: k g and k s of its mean gap and shear [N], the multiplier update of
+  // this iteration and of the last (for the stall test).
+  alm_corrections_.assign(2 * contacts_.size(), 0.0);
+  alm_previous_corrections_.assign(2 * contacts_.size(), 0.0);
+  alm_worst_contact_ = -1;
+}
+
+Eigen::VectorXd BlockSystem::contact_rhs() const {
+  const double kn = settings_.normal_stiffness_N_m, ks = settings_.shear_stiffness_N_m;
+  Eigen::VectorXd f = step_loads_;
+  for (const auto& c : contacts_.all()) {
+    if (c.state == ContactState::open) continue;
+    const double w = 1.0 / c.n_springs;
+    // Sliding: constant friction force opposing slip (Mohr-Coulomb limit) instead of a shear spring.
+    double friction = 0.0;
+    if (c.state == ContactState::sliding) {
+      double normal = 0.0;
+      for (int k = 0; k < c.n_springs; ++k) normal += w * (c.springs[k].normal_multiplier_N + kn * c.springs[k].gap0);
+      friction = c.friction_sign * (c.cohesion_Pa * c.length_m * c.bonded + std::max(-normal, 0.0) * c.tan_friction);
+    }
+    for (int k = 0; k < c.n_springs; ++k) {
+      const auto& s = c.springs[k];
+      const bool locked = c.state == ContactState::locked;
+      add_spring_to_rhs(f, s, w, s.normal_multiplier_N + kn * s.gap0,
+                        locked ? s.shear_multiplier_N + ks * s.shear0 : friction);
+    }
+  }
+  return f;
+}
+
+ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int iteration, StepStatistics& stats) {
+  if (!settings_.augmented_lagrangian) return ContactIteration::converged;  // penalty: one solve
+  const double kn = settings_.normal_stiffness_N_m, ks = settings_.shear_stiffness_N_m;
+  // Uzawa update of the multipliers (eq. 2.19); stop when the corrections are
+  // negligible against the contact forces themselves. A contact is one normal and
+  // one shear constraint: its springs (one per orientation at a joint end) are driven
+  // by their mean gap and mean shear. Once the two faces meet at an angle, the two
+  // springs' own gaps or shears differ by a geometric offset that no displacement
+  // removes, and per-spring updates would pull them apart for ever.
+  std::vector<double>& correction = alm_corrections_;
+  std::vector<double>& previous = alm_previous_corrections_;
+  double error = 0.0, scale = 0.0;
+  previous.swap(correction);
+  double change = 0.0;    // largest change of a correction since the last iteration [N]
+  double mismatch = 0.0;  // largest |gap| or |shear| over the contact's length
+  for (const auto& c : contacts_.all()) {
+    if (c.state == ContactState::open) continue;
+    const double w = 1.0 / c.n_springs;
+    const double error_before = error;
+    double gap = 0.0, shear = 0.0;
+    for (int k = 0; k < c.n_springs; ++k) {
+      const auto& s = c.springs[k];
+      gap += w * spring_gap(s, d);
+      scale = std::max(scale, std::abs(s.normal_multiplier_N));
+      if (c.state == ContactState::locked) {
+        shear += w * spring_shear(s, d);
+        scale = std::max(scale, std::abs(s.shear_multiplier_N));
+      }
+    }
+    error = std::max({error, std::abs(kn * gap), std::abs(ks * shear)});
+    const double length = c.joint >= 0 ? c.length_m : c.springs[0].edge_length_m;
+    mismatch = std::max(mismatch, std::max(std::abs(gap), std::abs(shear)) / length);
+    const int ci = contacts_.index_of(c);
+    if (error > error_before) alm_worst_contact_ = ci;
+    correction[2 * ci] = kn * gap;
+    correction[2 * ci + 1] = ks * shear;
+    change = std::max({change, std::abs(correction[2 * ci] - previous[2 * ci]),
+                       std::abs(correction[2 * ci + 1] - previous[2 * ci + 1])});
+  }
+  // Gaps cannot be resolved below the round-off of the coordinates they come from.
+  const double round_off_force = std::max(kn, ks) * gap_round_off_m_;
+  if (error <= settings_.alm_force_tolerance * scale + round_off_force) return ContactIteration::converged;
+  // Stalled: the corrections no longer change, so the multiplier updates no longer
+  // move the blocks. Around a point where every joint is closed, the contacts form a
+  // loop of constraints; once some of them slipped and re-locked, the rotations of
+  // the blocks leave their reference points inconsistent by a few nanometres, and no
+  // displacement closes every gap. The remaining gaps are that geometric mismatch:
+  // accept them if they are small against the contacts' lengths (kAlmStallMismatch),
+  // and count the stall and its mismatch.
+  if (iteration > 0 && change <= settings_.alm_force_tolerance * scale + round_off_force &&
+      mismatch <= kAlmStallMismatch) {
+    ++stats.alm_stalls;
+    stats.max_alm_stall_mismatch = std::max(stats.max_alm_stall_mismatch, mismatch);
+    return ContactIteration::stalled;
+  }
+  for (auto& c : contacts_.all()) {
+    if (c.state == ContactState::open) continue;
+    const int ci = contacts_.index_of(c);
+    for (int k = 0; k < c.n_springs; ++k) {
+      c.springs[k].normal_multiplier_N += correction[2 * ci];
+      c.springs[k].shear_multiplier_N += correction[2 * ci + 1];  // 0 unless locked
+    }
+  }
+  if (iteration + 1 == settings_.max_alm_iterations) throw_alm_limit(error, scale);
+  return ContactIteration::again;
+}
+
+void BlockSystem::throw_alm_limit(double error, double scale) const {
+  std::ostringstream msg;
+  msg << "Augmented Lagrangian iterations did not converge in " << settings_.max_alm_iterations
+      << " iterations: largest spring force correction " << error << " N against contact forces of " << scale
+      << " N (tolerance " << settings_.alm_force_tolerance << ")";
+  if (alm_worst_contact_ >= 0) {
+    const Contact& c = contacts_[alm_worst_contact_];
+    const Vec2& at = mesh_.points[c.point];
+    msg << "; largest at the " << to_string(c.state) << " contact of joint " << c.joint << " at point " << c.point
+        << " (" << at.x() << ", " << at.y() << ") m";
+  }
+  throw ConvergenceError(msg.str());
+}
+
+}  // namespace hfdda::dda

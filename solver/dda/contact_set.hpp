@@ -1,0 +1,60 @@
+#pragma once
+// The contacts of a block system (seed 2.3 iv: the list is built once from the mesh):
+// two per joint (ends p and q) first, then the vertex-vertex candidates; the block
+// pairs of K's pattern; the joint contacts around each point (propagation rule 2.3 i,
+// closed-joint chains); and the per-step bookkeeping (state at the start of the step,
+// flips of each contact for the cycle detection).
+
+#include <utility>
+#include <vector>
+
+#include "dda/contacts.hpp"
+#include "mesh/mesh.hpp"
+
+namespace hfdda::dda {
+
+class ContactSet {
+ public:
+  ContactSet() = default;
+  /// Joint-end contacts with the joints' properties and the vertex-vertex candidates.
+  explicit ContactSet(const mesh::Mesh& mesh);
+
+  std::vector<Contact>& all() { return contacts_; }
+  const std::vector<Contact>& all() const { return contacts_; }
+  Contact& operator[](int i) { return contacts_[i]; }
+  const Contact& operator[](int i) const { return contacts_[i]; }
+  int size() const { return static_cast<int>(contacts_.size()); }
+  int n_joint_contacts() const { return n_joint_contacts_; }
+  int index_of(const Contact& c) const { return static_cast<int>(&c - contacts_.data()); }
+
+  /// Block pairs of K's pattern: the joints' pairs, then vertex-vertex pairs once active.
+  const std::vector<std::pair<int, int>>& couplings() const { return couplings_; }
+  /// First activation of a vertex-vertex contact: its block pair joins the pattern.
+  void add_coupling(int block_a, int block_c);
+  bool pattern_changed() const { return pattern_changed_; }
+  void pattern_rebuilt() { pattern_changed_ = false; }
+
+  /// The joint's other end or another joint contact at the same point is open (the
+  /// open-neighbour half of the propagation rule, seed 2.3 i).
+  bool has_open_neighbour(int contact) const;
+  /// Blocks a and c are joined at the point by a chain of joint contacts that are
+  /// closed in `joint_state` (one state per joint contact).
+  bool joined_by_closed_joints(int point, int block_a, int block_c, const std::vector<ContactState>& joint_state) const;
+
+  /// Start of a step: remember the contacts for roll_back() and clear the flip counts.
+  void begin_step();
+  /// Counts a state change of a contact in this step; returns the count so far.
+  int count_flip(int contact) { return ++flips_[contact]; }
+  /// Back to the contacts at the start of the step (K's pattern is kept).
+  void roll_back() { contacts_ = at_start_; }
+
+ private:
+  std::vector<Contact> contacts_, at_start_;
+  int n_joint_contacts_ = 0;
+  std::vector<int> at_point_offset_, at_point_;  // joint contacts by point
+  std::vector<int> flips_;                       // state changes of each contact within the step
+  std::vector<std::pair<int, int>> couplings_;
+  bool pattern_changed_ = false;
+};
+
+}  // namespace hfdda::dda

@@ -1,0 +1,78 @@
+#pragma once
+// Failure of the bonds between blocks (seed section 2.3), as pure functions of
+// explicit inputs: the trial contact forces of the intact joint contacts, their
+// strengths and lengths, which points hold pressurised fluid and which contacts have
+// an open neighbour. The coupled step calls failing_bonds() between the trial
+// tractions of an open-close iteration and applying its state changes.
+//
+// The pieces, each replaceable on its own:
+//   bond_strength()   T0, C0, phi of a joint's bond from its properties (a fracture
+//                     toughness input, T0 = K_IC / sqrt(pi L / 2) by seed eq. 4.13,
+//                     would be computed here)
+//   failure_mode()    the criterion: Rankine tension, else Mohr-Coulomb shear
+//   may_fail()        eligibility, seed 2.3 (i)
+//   most_stressed()   selection among the tension failures, seed 2.3 (iii)
+
+#include <cstdint>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace hfdda::fracture {
+
+/// Strength of the bond of one joint contact.
+struct BondStrength {
+  double tensile_strength_Pa = 0.0;  ///< T0 (Rankine limit)
+  double cohesion_Pa = 0.0;          ///< C0 (Mohr-Coulomb)
+  double tan_friction = 0.0;         ///< tan phi
+};
+
+/// The bond strength of a joint from its properties (both of its contacts share it).
+BondStrength bond_strength(const mesh::JointProperties& properties);
+
+/// The rules of seed 2.3 that are case settings.
+struct FractureRules {
+  double tie_tolerance = 1.0e-3;               ///< 2.3 (iii): relative tie of the largest tensions
+  bool shear_failure_of_intact_joints = false; ///< Mohr-Coulomb failure of intact bonds
+  /// Seed 2.3 (i): a bond may fail only next to an open contact and a pressurised point.
+  bool failure_needs_open_neighbour_and_fluid = true;
+};
+
+/// An intact (bonded, locked) joint contact at the trial state of an open-close iteration.
+struct Bond {
+  int contact = -1;                 ///< index of the contact (returned with its failure)
+  int point = -1, other_point = -1; ///< the contact's point and the joint's other end
+  double length_m = 0.0;            ///< contact length Lc (half the joint)
+  double normal_N = 0.0;            ///< trial normal force, tension positive [N per m thickness]
+  double shear_N = 0.0;             ///< trial shear force [N per m thickness]
+  BondStrength strength;
+  bool breakable = true;            ///< false: the bond never fails
+  bool open_neighbour = false;      ///< the joint's other end or a joint contact at `point` is open
+};
+
+enum class FailureMode : std::uint8_t { none, tension, shear };
+
+/// The limit the bond's forces exceed: tension N > T0 Lc first; else, if shear failure
+/// of intact joints is on, |S| > C0 Lc + max(-N, 0) tan phi.
+FailureMode failure_mode(const Bond& bond, bool shear_failure_of_intact_joints);
+
+/// Seed 2.3 (i): breakable and, if the rule is on, next to an open contact and to a
+/// pressurised point (at either end of its joint).
+bool may_fail(const Bond& bond, const std::vector<char>& pressurised_points, const FractureRules& rules);
+
+/// Seed 2.3 (iii): of the tension failures only the most stressed fails, with all
+/// within tie_tolerance (relative) of it. Returns the indices into `normal_stress_Pa`.
+std::vector<int> most_stressed(const std::vector<double>& normal_stress_Pa, double tie_tolerance);
+
+struct BondFailure {
+  int contact = -1;
+  FailureMode mode = FailureMode::none;
+  double friction_sign = 0.0;  ///< shear failures: sense of the sliding friction force
+};
+
+/// The bonds that fail in this open-close iteration: the shear failures in bond order,
+/// then the selected tension failures in bond order.
+std::vector<BondFailure> failing_bonds(const std::vector<Bond>& bonds, const std::vector<char>& pressurised_points,
+                                       const FractureRules& rules);
+
+}  // namespace hfdda::fracture
