@@ -12,6 +12,8 @@
 namespace hfdda::io {
 namespace {
 
+/// On a mismatch the generated text is written into the build tree (never the source
+/// tree or the working directory), to be copied over docs/case_file.md.
 TEST(CaseFileDocs, MatchesGeneratedReference) {
   const std::string path = std::string(HFDDA_TEST_DATA_DIR) + "/../../../docs/case_file.md";
   std::ifstream in(path);
@@ -19,11 +21,12 @@ TEST(CaseFileDocs, MatchesGeneratedReference) {
   text << in.rdbuf();
   const std::string generated = case_file_reference_markdown();
   if (text.str() != generated) {
-    std::ofstream("case_file.md.generated") << generated;
+    const std::filesystem::path output =
+        std::filesystem::path(HFDDA_TEST_OUTPUT_DIR) / "case_file.md.generated";
+    std::ofstream(output) << generated;
     FAIL() << "docs/case_file.md differs from case_file_reference_markdown(); the generated "
               "text is in "
-           << (std::filesystem::current_path() / "case_file.md.generated").string()
-           << ": copy it to " << path;
+           << output.string() << ": copy it to " << path;
   }
 }
 
