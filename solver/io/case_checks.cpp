@@ -3,9 +3,18 @@
 
 #include "io/case_checks.hpp"
 
+#include "io/breakable_patterns.hpp"
+
 namespace hfdda::io {
 
 using namespace schema;
+
+std::string domain_text(const Rect& r) {
+  std::string text = "[";  // appended: `"[" + std::string` trips a false -Wrestrict in GCC 12
+  text += format_number(r.xmin) + ", " + format_number(r.xmax) + "] x [" +
+          format_number(r.ymin) + ", " + format_number(r.ymax) + "]";
+  return text;
+}
 
 namespace {
 
@@ -24,14 +33,6 @@ void MergedChecker::fail(const std::string& key, const std::string& rule) const 
 }
 
 namespace {
-
-/// "[xmin, xmax] x [ymin, ymax]".
-std::string domain_text(const Rect& r) {
-  std::string text = "[";  // appended: `"[" + std::string` trips a false -Wrestrict in GCC 12
-  text += format_number(r.xmin) + ", " + format_number(r.xmax) + "] x [" +
-          format_number(r.ymin) + ", " + format_number(r.ymax) + "]";
-  return text;
-}
 
 void check_point_in_domain(const CaseConfig& c, const MergedChecker& m, const Vec2& p,
                            const std::string& key) {
@@ -162,7 +163,13 @@ const std::vector<CrossCheck>& cross_checks() {
        "`fluid_filled: true`.",
        check_fluid_used},
       {"Probe names are distinct.", check_probe_names},
-      {"`numerics.min_width_tip` <= `numerics.min_width_main`.", check_min_widths}};
+      {"`numerics.min_width_tip` <= `numerics.min_width_main`.", check_min_widths},
+      {"`breakable_patterns` need `mesh.type: structured`; diagonal lines (`plus_45`, "
+       "`minus_45`) need `mesh.split: four`.",
+       check_pattern_mesh},
+      {"The region and origin of every breakable pattern lie in `domain.outer` (its boundary "
+       "included); its region holds at least one of its lines and at most 100000.",
+       check_pattern_regions}};
   return checks;
 }
 

@@ -28,6 +28,9 @@ class MergedChecker {
   std::string top_file_;
 };
 
+/// "[xmin, xmax] x [ymin, ymax]", as rectangles read in error messages.
+std::string domain_text(const Rect& r);
+
 struct CrossCheck {
   std::string rule;  ///< as written in docs/case_file.md
   void (*check)(const CaseConfig&, const MergedChecker&);

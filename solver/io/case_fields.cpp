@@ -6,7 +6,8 @@ namespace hfdda::io::schema {
 
 const Table<Rect>& rect_table() {
   static const Table<Rect> table{
-      "Rectangles (`domain.outer`, `domain.inner`, `materials[].box`)",
+      "Rectangles (`domain.outer`, `domain.inner`, `materials[].box`, "
+      "`breakable_patterns[].region`)",
       "A rectangle is given whole, all four keys, and replaces the previous one; "
       "xmin < xmax and ymin < ymax.",
       {required(number<Rect>({"xmin", "m", "", "left edge"}, &Rect::xmin, any_value())),

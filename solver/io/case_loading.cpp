@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "io/breakable_patterns.hpp"
 #include "io/case_checks.hpp"
 #include "io/case_config.hpp"
 #include "io/case_schema.hpp"
@@ -120,6 +121,7 @@ CaseConfig load_case_text(const std::string& yaml_text, const std::string& file_
   apply_case_text(yaml_text, file_label, chain, config, where);
   const MergedChecker checker(where, file_label);
   for (const auto& check : cross_checks()) check.check(config, checker);
+  append_breakable_pattern_lines(config);
   config.file = file_label;
   record_mesh_origin(where, config);
   return config;

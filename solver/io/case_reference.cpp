@@ -58,15 +58,31 @@ marked *required*. A complete example is
 - `extends: base.yaml` reads the base file (path relative to the file that names it)
   before this one; the keys of this file then override it one by one, maps merging
   key by key (`fluid` too; `fluid: null` removes an inherited one). Lists (`materials`,
-  `fractures`, `point_loads`, `fixed_points`, `injections`, `probes`,
-  `far_field.sides`), points and rectangles are replaced as a whole; list items start
-  from the item defaults below. Chains are allowed; a cycle is an error.
+  `fractures`, `breakable_patterns`, `point_loads`, `fixed_points`, `injections`,
+  `probes`, `far_field.sides`), points and rectangles are replaced as a whole; list
+  items start from the item defaults below. Chains are allowed; a cycle is an error.
 - Numbers are plain YAML numbers (`25e9`, `-5.0e6`); a quoted `"25e9"` is a string.
 - Checks that need the mesh (a material zone with no block, a degenerate block, a
   fracture off the grid lines of a structured mesh) are made when the model is built.
 - Without a `fluid` section no flow network is solved: fluid acts only through the
   pressures prescribed on fractures (`fractures[].pressure`). With one, fluid enters
   through `injections` and fills the joints of fractures marked `fluid_filled`.
+- Which joints may break: `joints` sets every joint; `fractures` and
+  `breakable_patterns` override it on the joints lying on their lines. A pattern says it
+  for whole families of grid lines and cell diagonals of a structured mesh (seed 3.4,
+  3.5), for example every joint of the inner domain, or its -45 degree diagonals with a
+  lower tensile strength:
+
+  ```yaml
+  joints: {tensile_strength: 1.0e6, breakable: false}
+  breakable_patterns:
+    - name: inner_grid
+      region: {xmin: -20, xmax: 20, ymin: -20, ymax: 20}
+      cell_size: 2
+      lines: [horizontal, vertical, plus_45]
+    - {name: weak, region: {xmin: -20, xmax: 20, ymin: -20, ymax: 20}, cell_size: 2,
+       lines: [minus_45], tensile_strength: 0.1e6}
+  ```
 )";
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "io/case_tables.hpp"
 
+#include "io/breakable_patterns.hpp"
 #include "io/case_fields.hpp"
 
 namespace hfdda::io {
@@ -412,6 +413,7 @@ const Table<CaseConfig>& case_table() {
                &CaseConfig::joints, &joint_table),
        map_list({"fractures", "", "§3.1-3.5, §5.2-5.4", "line features"},
                 &CaseConfig::fractures, &fracture_table, 0, "none", check_fracture_item),
+       breakable_patterns_key(),
        section({"far_field", "", "§3.1: background stress", "far-field stress"},
                &CaseConfig::far_field, &far_field_table),
        map_list({"point_loads", "", "", "concentrated forces"}, &CaseConfig::point_loads,
