@@ -75,6 +75,28 @@ struct FractureConfig {
   int line = 0;                       ///< case-file line, for error messages
 };
 
+/// Which joints of a structured mesh may break, said once instead of one fracture per
+/// grid line (seed 3.4, 3.5: only the inner domain fractures; along the grid lines, the
+/// cell diagonals or both; weaker -45 degree diagonals). The pattern is a square grid of
+/// side `cell_size_m` with a grid point at `origin`: its horizontal and vertical lines
+/// and the diagonals of its cells, each clipped to `region` (lines on the edges of
+/// `region` excluded). The loader turns every line into a FractureConfig appended to
+/// CaseConfig::fractures, leaving out the parts that lie on a written fracture.
+struct BreakablePatternConfig {
+  std::string name = "pattern";
+  Rect region;
+  double cell_size_m = 1.0;
+  Vec2 origin{0, 0};
+  /// Families of lines, expanded in this order: "horizontal", "vertical", "plus_45"
+  /// (y = x + c) and "minus_45" (y = -x + c).
+  std::vector<std::string> lines;
+  bool breakable = true;
+  std::optional<double> tensile_strength_Pa;  ///< unset: joints.tensile_strength
+  std::optional<double> cohesion_Pa;          ///< unset: joints.cohesion
+  std::optional<double> friction_angle_deg;   ///< unset: joints.friction_angle
+  int line = 0;                               ///< case-file line, for error messages
+};
+
 /// Fracturing fluid (seed 2.1, Table 3.1). Present in a case file means the flow
 /// network is solved, coupled with the blocks.
 struct FluidConfig {
@@ -170,7 +192,9 @@ struct CaseConfig {
   MeshConfig mesh;
   std::vector<MaterialConfig> materials{MaterialConfig{}};
   JointConfig joints;
+  /// The written line features, then the lines of breakable_patterns (added by the loader).
   std::vector<FractureConfig> fractures;
+  std::vector<BreakablePatternConfig> breakable_patterns;
   FarFieldConfig far_field;
   std::vector<PointLoadConfig> point_loads;
   Vec2 body_force_N_m3{0, 0};

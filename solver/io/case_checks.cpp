@@ -1,0 +1,176 @@
+// Checks across keys of the merged case (case_checks.hpp). The rule text of each check
+// is also its line in docs/case_file.md.
+
+#include "io/case_checks.hpp"
+
+#include "io/breakable_patterns.hpp"
+
+namespace hfdda::io {
+
+using namespace schema;
+
+std::string domain_text(const Rect& r) {
+  std::string text = "[";  // appended: `"[" + std::string` trips a false -Wrestrict in GCC 12
+  text += format_number(r.xmin) + ", " + format_number(r.xmax) + "] x [" +
+          format_number(r.ymin) + ", " + format_number(r.ymax) + "]";
+  return text;
+}
+
+namespace {
+
+std::string parent_key(const std::string& key) {
+  const auto cut = key.find_last_of(".[");
+  return cut == std::string::npos ? std::string() : key.substr(0, cut);
+}
+
+}  // namespace
+
+void MergedChecker::fail(const std::string& key, const std::string& rule) const {
+  std::string k = key;
+  while (!k.empty() && !present(k)) k = parent_key(k);
+  const Location loc = k.empty() ? Location{top_file_, 0} : where_->at(k);
+  throw InputError(loc.file, loc.line, key, rule);
+}
+
+namespace {
+
+void check_point_in_domain(const CaseConfig& c, const MergedChecker& m, const Vec2& p,
+                           const std::string& key) {
+  if (!c.domain.outer.contains(p))
+    m.fail(key, "lies outside the domain " + domain_text(c.domain.outer) + " (got " +
+                    format_point(p) + ")");
+}
+
+void check_inner_inside_outer(const CaseConfig& c, const MergedChecker& m) {
+  if (!c.domain.inner) return;
+  const Rect& in = *c.domain.inner;
+  const Rect& out = c.domain.outer;
+  if (!(in.xmin > out.xmin && in.xmax < out.xmax && in.ymin > out.ymin && in.ymax < out.ymax))
+    m.fail("domain.inner", "must lie strictly inside domain.outer " + domain_text(out) +
+                               " (got " + domain_text(in) + ")");
+}
+
+void check_end_time(const CaseConfig& c, const MergedChecker& m) {
+  if (c.time.end_time_s >= c.time.dt_s) return;
+  const std::string values = "end_time " + format_number(c.time.end_time_s) + ", dt " +
+                             format_number(c.time.dt_s);
+  if (m.present("time.end_time") || !m.present("time.dt"))
+    m.fail("time.end_time", "must be >= time.dt (got " + values + ")");
+  m.fail("time.dt", "must be <= time.end_time (got " + values + "; end_time was not set and "
+                    "defaults to " + format_number(TimeConfig{}.end_time_s) + ")");
+}
+
+void check_material_regions(const CaseConfig& c, const MergedChecker& m) {
+  for (std::size_t i = 0; i < c.materials.size(); ++i) {
+    const MaterialConfig& mat = c.materials[i];
+    const std::string key = item_key("materials", i);
+    if ((mat.region == "inner" || mat.region == "outer") && !c.domain.inner)
+      m.fail(key + ".region", "region '" + mat.region + "' needs domain.inner");
+    const Rect& b = mat.box;
+    const Rect& d = c.domain.outer;
+    const bool overlaps = b.xmin < d.xmax && b.xmax > d.xmin && b.ymin < d.ymax && b.ymax > d.ymin;
+    if (mat.region == "box" && !overlaps)
+      m.fail(key + ".box", "must overlap the domain " + domain_text(d) + " (got " +
+                               domain_text(b) + ")");
+  }
+}
+
+void check_breakable_region(const CaseConfig& c, const MergedChecker& m) {
+  if (c.joints.breakable_region == "inner" && !c.domain.inner)
+    m.fail("joints.breakable_region", "region 'inner' needs domain.inner");
+}
+
+void check_fractures_in_domain(const CaseConfig& c, const MergedChecker& m) {
+  for (std::size_t i = 0; i < c.fractures.size(); ++i) {
+    check_point_in_domain(c, m, c.fractures[i].from, item_key("fractures", i) + ".from");
+    check_point_in_domain(c, m, c.fractures[i].to, item_key("fractures", i) + ".to");
+  }
+}
+
+void check_points_in_domain(const CaseConfig& c, const MergedChecker& m) {
+  for (std::size_t i = 0; i < c.point_loads.size(); ++i)
+    check_point_in_domain(c, m, c.point_loads[i].at, item_key("point_loads", i) + ".at");
+  for (std::size_t i = 0; i < c.fixed_points.size(); ++i)
+    check_point_in_domain(c, m, c.fixed_points[i].at, item_key("fixed_points", i));
+  for (std::size_t i = 0; i < c.injections.size(); ++i)
+    check_point_in_domain(c, m, c.injections[i].at, item_key("injections", i) + ".at");
+  for (std::size_t i = 0; i < c.probes.size(); ++i)
+    check_point_in_domain(c, m, c.probes[i].at, item_key("probes", i) + ".at");
+}
+
+/// Injections, probes and fluid-filled fractures are parts of the flow network.
+void check_fluid_needed(const CaseConfig& c, const MergedChecker& m) {
+  if (c.fluid) return;
+  const std::string rule = "needs a 'fluid' section (none is given";
+  const std::string removed = m.present("fluid") ? "; 'fluid: null' removed it)" : ")";
+  if (!c.injections.empty()) m.fail("injections", "a fluid injection " + rule + removed);
+  if (!c.probes.empty()) m.fail("probes", "a pressure probe " + rule + removed);
+  for (std::size_t i = 0; i < c.fractures.size(); ++i)
+    if (c.fractures[i].fluid_filled)
+      m.fail(item_key("fractures", i) + ".fluid_filled", "fluid_filled: true " + rule + removed);
+}
+
+/// A flow network with no fluid in it and no source would stay empty.
+void check_fluid_used(const CaseConfig& c, const MergedChecker& m) {
+  if (!c.fluid || !c.injections.empty()) return;
+  for (const auto& fracture : c.fractures)
+    if (fracture.fluid_filled) return;
+  m.fail("fluid", "needs at least one item in 'injections' or one fracture with "
+                  "fluid_filled: true (there is neither)");
+}
+
+void check_probe_names(const CaseConfig& c, const MergedChecker& m) {
+  for (std::size_t i = 0; i < c.probes.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (c.probes[i].name == c.probes[j].name)
+        m.fail(item_key("probes", i) + ".name", "duplicate probe name '" + c.probes[i].name +
+                                                    "' (also probes[" + std::to_string(j) +
+                                                    "]); names must be distinct");
+}
+
+void check_min_widths(const CaseConfig& c, const MergedChecker& m) {
+  const NumericsConfig& n = c.numerics;
+  if (n.min_width_tip_m <= n.min_width_main_m) return;
+  const std::string values = "min_width_tip " + format_number(n.min_width_tip_m) +
+                             ", min_width_main " + format_number(n.min_width_main_m);
+  if (m.present("numerics.min_width_tip") || !m.present("numerics.min_width_main"))
+    m.fail("numerics.min_width_tip", "must be <= numerics.min_width_main (got " + values + ")");
+  m.fail("numerics.min_width_main",
+         "must be >= numerics.min_width_tip (got " + values +
+             "; min_width_tip was not set and defaults to " +
+             format_number(NumericsConfig{}.min_width_tip_m) + ")");
+}
+
+}  // namespace
+
+const std::vector<CrossCheck>& cross_checks() {
+  static const std::vector<CrossCheck> checks{
+      {"`domain.inner` lies strictly inside `domain.outer`.", check_inner_inside_outer},
+      {"`time.end_time` >= `time.dt`.", check_end_time},
+      {"A material with region `inner` or `outer` needs `domain.inner`; a material box "
+       "overlaps `domain.outer`.",
+       check_material_regions},
+      {"`joints.breakable_region: inner` needs `domain.inner`.", check_breakable_region},
+      {"Both ends of every fracture lie in `domain.outer` (its boundary included).",
+       check_fractures_in_domain},
+      {"Every point-load location, fixed point, injection point and probe lies in "
+       "`domain.outer`.",
+       check_points_in_domain},
+      {"`injections`, `probes` and a fracture with `fluid_filled: true` need a `fluid` "
+       "section.",
+       check_fluid_needed},
+      {"A `fluid` section needs at least one injection or one fracture with "
+       "`fluid_filled: true`.",
+       check_fluid_used},
+      {"Probe names are distinct.", check_probe_names},
+      {"`numerics.min_width_tip` <= `numerics.min_width_main`.", check_min_widths},
+      {"`breakable_patterns` need `mesh.type: structured`; diagonal lines (`plus_45`, "
+       "`minus_45`) need `mesh.split: four`.",
+       check_pattern_mesh},
+      {"The region and origin of every breakable pattern lie in `domain.outer` (its boundary "
+       "included); its region holds at least one of its lines and at most 100000.",
+       check_pattern_regions}};
+  return checks;
+}
+
+}  // namespace hfdda::io

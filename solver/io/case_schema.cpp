@@ -1,0 +1,159 @@
+// Text helpers, scalar readers and ranges of the case-file key tables (case_schema.hpp).
+
+#include "io/case_schema.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace hfdda::io::schema {
+
+// ---------------------------------------------------------------------------
+// Text helpers
+
+std::string format_number(double v) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  std::string text(buffer, result.ptr);
+  const auto e = text.find('e');
+  if (e == std::string::npos) return text;
+  std::string exponent = text.substr(e + 1);
+  const bool negative = exponent.front() == '-';
+  if (exponent.front() == '+' || exponent.front() == '-') exponent.erase(0, 1);
+  exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+  return text.substr(0, e) + "e" + (negative ? "-" : "") + exponent;
+}
+
+std::string format_point(const Vec2& p) {
+  // Appended piece by piece: `"[" + std::string` trips a false -Wrestrict in GCC 12.
+  std::string text = "[";
+  text += format_number(p.x()) + ", " + format_number(p.y()) + "]";
+  return text;
+}
+
+std::string format_rect(const Rect& r) {
+  std::string text = "{xmin: ";
+  text += format_number(r.xmin) + ", xmax: " + format_number(r.xmax) +
+          ", ymin: " + format_number(r.ymin) + ", ymax: " + format_number(r.ymax) + "}";
+  return text;
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& separator) {
+  std::string text;
+  for (const auto& item : items) text += (text.empty() ? "" : separator) + item;
+  return text;
+}
+
+std::string child_key(const std::string& prefix, const std::string& name) {
+  return prefix.empty() ? name : prefix + "." + name;
+}
+
+std::string item_key(const std::string& prefix, std::size_t index) {
+  return prefix + "[" + std::to_string(index) + "]";
+}
+
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar:
+      return (node.Tag() == "!" ? "the quoted string '" : "'") + node.Scalar() + "'";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a map";
+    case YAML::NodeType::Null: return "null";
+    default: return "nothing";
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Scalar readers
+
+namespace {
+
+std::optional<double> parse_double(std::string_view text) {
+  if (text.starts_with('+')) text.remove_prefix(1);
+  double value = 0.0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (result.ec != std::errc() || result.ptr != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+std::optional<int> parse_int(std::string_view text) {
+  if (text.starts_with('+')) text.remove_prefix(1);
+  int value = 0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (result.ec != std::errc() || result.ptr != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+/// A plain (unquoted) scalar: YAML types a quoted "5" as a string, and so do we.
+bool is_plain_scalar(const YAML::Node& node) { return node.IsScalar() && node.Tag() != "!"; }
+
+}  // namespace
+
+double read_number(const FileReader& r, const YAML::Node& node, const std::string& key) {
+  const auto value = is_plain_scalar(node) ? parse_double(node.Scalar()) : std::nullopt;
+  if (!value || !std::isfinite(*value))
+    r.fail(node, key, "expected a finite number (got " + describe(node) + ")");
+  return *value;
+}
+
+int read_integer(const FileReader& r, const YAML::Node& node, const std::string& key) {
+  const auto value = is_plain_scalar(node) ? parse_int(node.Scalar()) : std::nullopt;
+  if (!value) r.fail(node, key, "expected an integer (got " + describe(node) + ")");
+  return *value;
+}
+
+bool read_bool(const FileReader& r, const YAML::Node& node, const std::string& key) {
+  if (is_plain_scalar(node)) {
+    const std::string& s = node.Scalar();
+    if (s == "true" || s == "True" || s == "TRUE") return true;
+    if (s == "false" || s == "False" || s == "FALSE") return false;
+  }
+  r.fail(node, key, "expected a boolean, true or false (got " + describe(node) + ")");
+}
+
+std::string read_string(const FileReader& r, const YAML::Node& node, const std::string& key) {
+  if (!node.IsScalar()) r.fail(node, key, "expected a string (got " + describe(node) + ")");
+  return node.Scalar();
+}
+
+Vec2 read_point(const FileReader& r, const YAML::Node& node, const std::string& key) {
+  if (!node.IsSequence() || node.size() != 2) {
+    const std::string got = node.IsSequence()
+                                ? "a list of " + std::to_string(node.size()) + " items"
+                                : describe(node);
+    r.fail(node, key, "expected a point [x, y], a list of 2 numbers (got " + got + ")");
+  }
+  return Vec2{read_number(r, node[0], key), read_number(r, node[1], key)};
+}
+
+// ---------------------------------------------------------------------------
+// Ranges and key documentation
+
+std::string Range::text() const {
+  if (lo && hi)
+    return std::string(lo_open ? "(" : "[") + format_number(*lo) + ", " + format_number(*hi) +
+           (hi_open ? ")" : "]");
+  if (lo) return std::string(lo_open ? "> " : ">= ") + format_number(*lo);
+  if (hi) return std::string(hi_open ? "< " : "<= ") + format_number(*hi);
+  return "any";
+}
+
+void check_range(const FileReader& r, const YAML::Node& node, const std::string& key,
+                 const Range& range, double value) {
+  if (!range.contains(value))
+    r.fail(node, key, "must be " + range.rule() + " (got " + format_number(value) + ")");
+}
+
+KeyDoc key_doc(const Doc& d, std::string type, std::string default_text, std::string allowed) {
+  KeyDoc doc;
+  doc.name = d.name;
+  doc.type = std::move(type);
+  doc.unit = d.unit;
+  doc.default_text = std::move(default_text);
+  doc.allowed = std::move(allowed);
+  doc.seed = d.seed;
+  doc.description = d.description;
+  return doc;
+}
+
+}  // namespace hfdda::io::schema

@@ -1,0 +1,442 @@
+// The key tables of the case file: one table per section of CaseConfig, in the order
+// docs/case_file.md lists them. Declarative: each row names a key, its unit, allowed
+// range, seed source and description, and the field kind that reads it (case_fields.hpp).
+// Checks on one complete list item sit next to the item's table; checks across
+// sections are in case_checks.cpp.
+
+#include "io/case_tables.hpp"
+
+#include "io/breakable_patterns.hpp"
+#include "io/case_fields.hpp"
+
+namespace hfdda::io {
+
+using namespace schema;
+
+namespace {
+
+/// fixed_points: a list of [x, y], replaced as a whole.
+Field<CaseConfig> fixed_point_list(Doc d) {
+  auto read = [](FileReader& r, const YAML::Node& n, const std::string& key, CaseConfig& out) {
+    if (!n.IsSequence()) r.fail(n, key, "expected a list of points (got " + describe(n) + ")");
+    r.forget(key + "[");
+    std::vector<FixedPointConfig> points;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      r.set_null_line(r.line(n));
+      r.record(item_key(key, i), n[i]);
+      points.push_back(FixedPointConfig{read_point(r, n[i], item_key(key, i)), r.line(n[i])});
+    }
+    out.fixed_points = std::move(points);
+  };
+  return {key_doc(d, "list of [x, y]", "none", "each inside domain.outer"), read};
+}
+
+// --- Sections ---------------------------------------------------------------
+
+const Table<DomainConfig>& domain_table() {
+  static const Table<DomainConfig> table{
+      "`domain`",
+      "",
+      {rect({"outer", "m", "§3.1: 100 m x 100 m",
+             "outer boundary of the rock; far-field tractions act on its sides"},
+            &DomainConfig::outer, "xmin < xmax, ymin < ymax"),
+       optional_rect({"inner", "m", "§3.1: 36 m x 24 m; §3.4: 40 m x 40 m",
+                      "finer, separately meshed inner domain; null removes an inherited one"},
+                     &DomainConfig::inner, "strictly inside outer")}};
+  return table;
+}
+
+const Table<MeshConfig>& mesh_table() {
+  static const Table<MeshConfig> table{
+      "`mesh`",
+      "`cell_size`, `outer_growth` and `split` apply to structured meshes; `max_area_inner`, "
+      "`max_area_outer` and `min_angle` to Delaunay meshes.",
+      {choice({"type", "", "§3.1 grid; §3.3, §5.2 constrained Delaunay",
+               "structured grid or constrained Delaunay triangulation"},
+              &MeshConfig::kind,
+              Choices<MeshKind>{{"structured", MeshKind::structured},
+                                {"delaunay", MeshKind::delaunay}}),
+       number({"cell_size", "m", "§3.1: joints 1 m apart; §3.2: 0.5 to 4 m",
+               "side of the square cells inside the inner rectangle"},
+              &MeshConfig::cell_size_m, greater_than(0)),
+       number({"outer_growth", "-", "§3.1: coarser outer domain",
+               "ratio of successive cell sizes from the inner rectangle outwards"},
+              &MeshConfig::outer_growth, at_least(1)),
+       choice({"split", "", "§3.1: quadrilaterals vs triangles",
+               "quadrilateral cells kept whole or split into 2 or 4 triangles"},
+              &MeshConfig::split,
+              Choices<mesh::CellSplit>{{"none", mesh::CellSplit::none},
+                                       {"two", mesh::CellSplit::two},
+                                       {"four", mesh::CellSplit::four}}),
+       number({"max_area_inner", "m^2", "§3.3: 30 mm^2; §5.2: 2 cm^2",
+               "largest triangle area inside the inner rectangle (everywhere without one)"},
+              &MeshConfig::max_area_inner_m2, greater_than(0)),
+       number({"max_area_outer", "m^2", "§5.5: 50 m^2",
+               "largest triangle area outside the inner rectangle"},
+              &MeshConfig::max_area_outer_m2, greater_than(0)),
+       number({"min_angle", "deg", "", "minimum triangle angle of the Delaunay refinement"},
+              &MeshConfig::min_angle_deg, interval(0, true, 30, false))}};
+  return table;
+}
+
+/// Region 'box' is what a box is for, so each needs the other.
+void check_material_item(const FileReader& r, const YAML::Node& item, const std::string& key,
+                         const MaterialConfig& material, const std::set<std::string>& seen) {
+  if (material.region == "box" && !seen.contains("box"))
+    r.fail(item["region"], key + ".region", "region 'box' needs a 'box' rectangle");
+  if (material.region != "box" && seen.contains("box"))
+    r.fail(item["box"], key + ".box",
+           "is only used with region 'box' (region is '" + material.region + "')");
+}
+
+const Table<MaterialConfig>& material_table() {
+  static const Table<MaterialConfig> table{
+      "`materials[]` items",
+      "Zones are applied in order; a later zone overrides an earlier one (by block centroid). "
+      "`box` is given exactly when `region` is `box`.",
+      {text({"name", "", "", "label used in outputs"}, &MaterialConfig::name),
+       choice({"region", "", "§3.3: softer outer blocks",
+               "where it applies: everywhere, inside or outside domain.inner, or in box"},
+              &MaterialConfig::region,
+              Choices<std::string>{{"all", "all"}, {"inner", "inner"}, {"outer", "outer"},
+                                   {"box", "box"}}),
+       rect({"box", "m", "", "zone of region 'box'"}, &MaterialConfig::box,
+            "overlaps domain.outer", "none"),
+       number({"youngs_modulus", "Pa", "Table 3.1: E = 25 GPa", "Young's modulus"},
+              &MaterialConfig::youngs_modulus_Pa, greater_than(0)),
+       number({"poissons_ratio", "-", "Table 3.1: nu = 0.25", "Poisson's ratio (plane strain)"},
+              &MaterialConfig::poissons_ratio, interval(0, false, 0.5, true)),
+       number({"density", "kg/m^3", "Table 3.1: rho_r = 2650 kg/m^3", "rock density"},
+              &MaterialConfig::density_kg_m3, greater_than(0))}};
+  return table;
+}
+
+const Table<JointConfig>& joint_table() {
+  static const Table<JointConfig> table{
+      "`joints`",
+      "Every joint (bond between two blocks) takes these values unless a fracture on it "
+      "overrides them.",
+      {number({"tensile_strength", "Pa", "Table 3.1: T0 = 0; Table 5.1: T0 = 6 MPa",
+               "tensile strength T0 of intact bonds (seed eq. 2.16)"},
+              &JointConfig::tensile_strength_Pa, at_least(0)),
+       number({"cohesion", "Pa", "Tables 5.1, 5.3: C0",
+               "cohesion C0 of intact bonds (seed eq. 2.16)"},
+              &JointConfig::cohesion_Pa, at_least(0)),
+       number({"friction_angle", "deg", "Table 3.1: phi = 30 deg", "friction angle phi"},
+              &JointConfig::friction_angle_deg, interval(0, false, 90, true)),
+       boolean({"breakable", "", "§2.3", "false: intact bonds never break"},
+               &JointConfig::breakable),
+       choice({"breakable_region", "", "§3.4: fracturing in the inner domain only",
+               "all, or inner: only joints between two blocks whose centroids lie in domain.inner "
+               "may break (a fracture's `breakable` still overrides)"},
+              &JointConfig::breakable_region, Choices<std::string>{{"all", "all"}, {"inner", "inner"}})}};
+  return table;
+}
+
+/// A fracture is a line: its ends must differ. Fluid can only fill joints that start
+/// open, and the pressure of fluid-filled joints is solved for, not prescribed. Each
+/// flagged value was written in this item (list items start from the defaults).
+void check_fracture_item(const FileReader& r, const YAML::Node& item, const std::string& key,
+                         const FractureConfig& fracture, const std::set<std::string>&) {
+  if (fracture.from == fracture.to)
+    r.fail(item["to"], key + ".to",
+           "must differ from 'from' (both are " + format_point(fracture.from) + ")");
+  if (fracture.fluid_filled && !fracture.initially_open)
+    r.fail(item["fluid_filled"], key + ".fluid_filled",
+           "fluid_filled: true needs initially_open: true on the same fracture");
+  if (fracture.fluid_filled && fracture.pressure_Pa)
+    r.fail(item["pressure"], key + ".pressure",
+           "cannot be prescribed on a fracture with fluid_filled: true (its pressure is "
+           "solved for); give one or the other");
+  if (fracture.initial_width_m > 0 && !fracture.fluid_filled)
+    r.fail(item["initial_width"], key + ".initial_width",
+           "is only used with fluid_filled: true (got " +
+               format_number(fracture.initial_width_m) + ")");
+}
+
+const Table<FractureConfig>& fracture_table() {
+  static const Table<FractureConfig> table{
+      "`fractures[]` items",
+      "A straight line feature: initial fracture, natural fracture, prescribed path or "
+      "interface. Joints lying on it take its values; unset values come from `joints`. "
+      "`from` and `to` differ. `fluid_filled: true` needs `initially_open: true` and "
+      "excludes `pressure`; `initial_width` > 0 needs `fluid_filled: true`.",
+      {text({"name", "", "", "label used in outputs"}, &FractureConfig::name),
+       required(point({"from", "m", "§3.1: 20 m fracture at the centre", "first end"},
+                      &FractureConfig::from, "inside domain.outer")),
+       required(point({"to", "m", "", "second end"}, &FractureConfig::to,
+                      "inside domain.outer")),
+       number({"segment_length", "m", "§3.1: joints 1 m apart",
+               "Delaunay constraint piece length; 0: the mesh size"},
+              &FractureConfig::segment_length_m, at_least(0)),
+       boolean({"initially_open", "", "§3.2: joints at the injection point start open",
+                "bonds on the line are broken at t = 0"},
+               &FractureConfig::initially_open),
+       boolean({"natural", "", "Tables 5.1, 5.3: natural fractures",
+                "pre-existing natural fracture"},
+               &FractureConfig::natural),
+       optional_boolean({"breakable", "", "§4.5: fracturing confined to one line",
+                         "whether its intact bonds may break"},
+                        &FractureConfig::breakable, "joints.breakable"),
+       optional_number({"tensile_strength", "Pa", "Table 5.1: natural fracture T0 = 0",
+                        "tensile strength T0 of its bonds"},
+                       &FractureConfig::tensile_strength_Pa, at_least(0),
+                       "joints.tensile_strength"),
+       optional_number({"cohesion", "Pa", "Table 5.1: natural fracture C0 = 0",
+                        "cohesion C0 of its bonds"},
+                       &FractureConfig::cohesion_Pa, at_least(0), "joints.cohesion"),
+       optional_number({"friction_angle", "deg", "Table 5.1: natural fracture phi = 35 deg",
+                        "friction angle of its joints"},
+                       &FractureConfig::friction_angle_deg, interval(0, false, 90, true),
+                       "joints.friction_angle"),
+       optional_number({"pressure", "Pa", "§3.1: 9.81 MPa",
+                        "fluid pressure prescribed on its joints"},
+                       &FractureConfig::pressure_Pa, at_least(0), "none"),
+       boolean({"fluid_filled", "",
+                "§3.2: the two fractures on either side of the injection point were "
+                "initially opened",
+                "its open joints hold fluid (at zero pressure) and belong to the flow "
+                "network from t = 0; needs a `fluid` section"},
+               &FractureConfig::fluid_filled),
+       number({"initial_width", "m", "",
+               "initial aperture of its fluid-filled joints; 0: the minimum width "
+               "(numerics.min_width_main)"},
+              &FractureConfig::initial_width_m, at_least(0), "> 0 only with fluid_filled")}};
+  return table;
+}
+
+const Table<FluidConfig>& fluid_table() {
+  static const Table<FluidConfig> table{
+      "`fluid`",
+      "Present, the flow network of the fracture joints is solved, coupled with the "
+      "blocks; missing keys take the defaults below. Compressible fluid, rho = rho0 (1 + "
+      "(p - p0) / K_f) (seed eq. 2.6); cubic law with viscosity mu (eq. 2.2).",
+      {number({"density", "kg/m^3", "Table 3.1: rho_f = 1000 kg/m^3",
+               "reference density rho0, at the reference pressure"},
+              &FluidConfig::density_kg_m3, greater_than(0)),
+       number({"bulk_modulus", "Pa", "Table 3.1: K_f = 2.2 GPa",
+               "bulk modulus K_f; compressibility c_f = 1 / K_f"},
+              &FluidConfig::bulk_modulus_Pa, greater_than(0)),
+       number({"viscosity", "Pa s", "Table 3.1: mu = 1 mPa s; Table 5.3: 20 mPa s",
+               "dynamic viscosity mu"},
+              &FluidConfig::viscosity_Pa_s, greater_than(0)),
+       number({"reference_pressure", "Pa", "eq. 2.6: p0",
+               "pressure p0 at which the density is rho0"},
+              &FluidConfig::reference_pressure_Pa, any_value()),
+       number({"leak_off_coefficient", "m/s^0.5", "§3.4: C_L = 0.02 mm/s^0.5 = 2e-5",
+               "Carter coefficient C_L of one fracture wall; 0: no leak-off. Both walls "
+               "leak: a wetted joint of length L loses 2 C_L L / sqrt(t - t0) per metre of "
+               "depth, t0 the time fluid reached it (the seed's eq. 2.3 counts one wall; "
+               "NOTES erratum 4)"},
+              &FluidConfig::leak_off_coefficient_m_sqrt_s, at_least(0))}};
+  return table;
+}
+
+const Table<InjectionConfig>& injection_table() {
+  static const Table<InjectionConfig> table{
+      "`injections[]` items",
+      "A fluid source at the mesh vertex nearest `at`; needs a `fluid` section.",
+      {text({"name", "", "", "label used in outputs"}, &InjectionConfig::name),
+       required(point({"at", "m", "§3.2: injection at the origin",
+                       "injection point (the nearest mesh vertex is used)"},
+                      &InjectionConfig::at, "inside domain.outer")),
+       required(number({"mass_rate", "kg/s", "§3.2: Q0 = 4 kg/s; §3.4: 1 kg/s",
+                        "injected mass per second and per metre of out-of-plane thickness"},
+                       &InjectionConfig::mass_rate_kg_s, greater_than(0))),
+       number({"start_time", "s", "", "time at which injection starts (then continues)"},
+              &InjectionConfig::start_time_s, at_least(0))}};
+  return table;
+}
+
+const Table<ProbeConfig>& probe_table() {
+  static const Table<ProbeConfig> table{
+      "`probes[]` items",
+      "A gauge read at the mesh vertex nearest `at` every step; its pressure is the "
+      "history.csv column `probe_<name>_pressure_Pa`, so names are distinct and use "
+      "letters, digits and `_` only. Needs a `fluid` section.",
+      {required(identifier({"name", "", "", "gauge name, part of the output column names"},
+                           &ProbeConfig::name)),
+       required(point({"at", "m", "", "gauge location (the nearest mesh vertex is used)"},
+                      &ProbeConfig::at, "inside domain.outer"))}};
+  return table;
+}
+
+const Table<FarFieldConfig>& far_field_table() {
+  static const Table<FarFieldConfig> table{
+      "`far_field`",
+      "Far-field stress, tension positive, applied as tractions t = sigma . n on the listed "
+      "sides of `domain.outer` (a 5 MPa compression is `syy: -5e6`).",
+      {number({"sxx", "Pa", "Table 5.4: sigma_1, sigma_3", "normal stress along x"},
+              &FarFieldConfig::sxx_Pa, any_value()),
+       number({"syy", "Pa", "§3.1: 5 MPa background stress", "normal stress along y"},
+              &FarFieldConfig::syy_Pa, any_value()),
+       number({"sxy", "Pa", "", "shear stress"}, &FarFieldConfig::sxy_Pa, any_value()),
+       choice_list({"sides", "", "§3.1: upper and lower boundaries",
+                    "sides of domain.outer loaded by the far-field stress"},
+                   &FarFieldConfig::sides, {"left", "right", "bottom", "top"}),
+       boolean({"in_situ", "", "",
+                "the rock starts stressed and in equilibrium (block stresses, joint contact "
+                "forces, tractions on all four sides; `sides` is then ignored); false: loaded "
+                "by the boundary tractions from rest, as the seed does"},
+               &FarFieldConfig::in_situ)}};
+  return table;
+}
+
+const Table<PointLoadConfig>& point_load_table() {
+  static const Table<PointLoadConfig> table{
+      "`point_loads[]` items",
+      "",
+      {point({"at", "m", "", "point of application"}, &PointLoadConfig::at,
+             "inside domain.outer"),
+       point({"force", "N/m", "", "force per metre of out-of-plane thickness"},
+             &PointLoadConfig::force_N_per_m, "any")}};
+  return table;
+}
+
+const Table<ContactConfig>& contact_table() {
+  static const Table<ContactConfig> table{
+      "`contact`",
+      "Stiffnesses are factors times the largest Young's modulus of the materials.",
+      {choice({"method", "", "§2.3: PM or ALM; §3.1: ALM used thereafter",
+               "contact enforcement: augmented Lagrangian or penalty"},
+              &ContactConfig::method,
+              Choices<ContactMethod>{{"alm", ContactMethod::augmented_lagrangian},
+                                     {"penalty", ContactMethod::penalty}}),
+       number({"normal_stiffness", "-", "Table 3.1: k_n = 100 E; Table 5.1: 30 E",
+               "normal spring k_n / max E"},
+              &ContactConfig::normal_stiffness_factor, greater_than(0)),
+       number({"shear_stiffness", "-", "Table 3.1: k_s = 100 E; Table 5.1: 30 E",
+               "shear spring k_s / max E"},
+              &ContactConfig::shear_stiffness_factor, greater_than(0)),
+       number({"vertex_vertex_activation", "m", "§2.3 item v (cited in §3.1)",
+               "tolerance for applying vertex-vertex contacts"},
+              &ContactConfig::vertex_vertex_activation_m, at_least(0)),
+       number({"fixed_point_stiffness", "-", "§3.3: corners fixed",
+               "fixed-point spring / max E"},
+              &ContactConfig::fixed_point_stiffness_factor, greater_than(0))}};
+  return table;
+}
+
+const Table<NumericsConfig>& numerics_table() {
+  static const Table<NumericsConfig> table{
+      "`numerics`",
+      "",
+      {choice({"analysis", "", "", "static: velocities reset each step; dynamic: kept"},
+              &NumericsConfig::analysis,
+              Choices<AnalysisKind>{{"static", AnalysisKind::static_analysis},
+                                    {"dynamic", AnalysisKind::dynamic_analysis}}),
+       number({"alm_tolerance", "-", "§2.3 (ALM)",
+               "ALM stop: max abs(k g) <= tolerance * max abs(contact force)"},
+              &NumericsConfig::alm_force_tolerance, greater_than(0)),
+       integer({"max_alm_iterations", "", "§2.3 (ALM)", "ALM iterations per open-close pass"},
+               &NumericsConfig::max_alm_iterations, at_least(1)),
+       integer({"max_open_close_iterations", "", "§2.4: outer iterations",
+                "open-close iterations per time step"},
+               &NumericsConfig::max_open_close_iterations, at_least(1)),
+       number({"tie_tolerance", "-", "§2.3 (iii): 0.1 %",
+               "relative difference of normal stress below which simultaneous tensile "
+               "failures both break"},
+              &NumericsConfig::tie_tolerance, greater_than(0)),
+       boolean({"shear_failure_of_intact_joints", "", "§2.3 (ii)",
+                "false: intact joints must fail in tension before they may shear"},
+               &NumericsConfig::shear_failure_of_intact_joints),
+       number({"min_width_main", "m", "§2.1: 0.5 um",
+               "smallest aperture of a wetted joint away from the fracture tips"},
+              &NumericsConfig::min_width_main_m, greater_than(0), ">= min_width_tip"),
+       number({"min_width_tip", "m", "§2.1: 0.1 um",
+               "smallest aperture of a wetted joint at a fracture tip"},
+              &NumericsConfig::min_width_tip_m, greater_than(0), "<= min_width_main"),
+       number({"max_closing_fraction", "-", "§2.1: 5 %",
+               "largest fraction of its aperture a wetted joint may close in one step"},
+              &NumericsConfig::max_closing_fraction, interval(0, true, 1, true)),
+       number({"coupling_tolerance", "-", "§2.4, eqs. 2.25-2.26 (NOTES erratum 2)",
+               "coupled-step stop: relative pressure change and relative mass residual "
+               "below it"},
+              &NumericsConfig::coupling_tolerance, greater_than(0)),
+       integer({"max_coupling_iterations", "", "§2.4", "pressure iterations per coupled solve"},
+               &NumericsConfig::max_coupling_iterations, at_least(1)),
+       integer({"max_step_cuts", "", "",
+                "times a step that fails to converge is retried with dt halved before the "
+                "run stops"},
+               &NumericsConfig::max_step_cuts, at_least(0))}};
+  return table;
+}
+
+const Table<TimeConfig>& time_table() {
+  static const Table<TimeConfig> table{
+      "`time`",
+      "",
+      {number({"dt", "s", "Table 3.1: 1 s; Table 5.3: 1 min", "time step"}, &TimeConfig::dt_s,
+              greater_than(0)),
+       number({"end_time", "s", "§3.1: 2 steps; Table 4.1: 10 s; Table 5.3: 1 hr",
+               "simulated time"},
+              &TimeConfig::end_time_s, greater_than(0), ">= time.dt")}};
+  return table;
+}
+
+const Table<OutputConfig>& output_table() {
+  static const Table<OutputConfig> table{
+      "`output`",
+      "",
+      {integer({"every_steps", "", "",
+                "joint CSV and VTU every n steps and always at the end; 0: end only"},
+               &OutputConfig::every_steps, at_least(0)),
+       boolean({"vtu", "", "", "write VTU files"}, &OutputConfig::vtu)}};
+  return table;
+}
+
+/// `extends` is resolved by the loader before the other keys; here it is only declared.
+Field<CaseConfig> extends_key() {
+  auto read = [](FileReader&, const YAML::Node&, const std::string&, CaseConfig&) {};
+  return {key_doc({"extends", "", "",
+                   "base case file, read first; path relative to this file"},
+                  "string", "none", "a readable case file, no cycle"),
+          read};
+}
+
+}  // namespace
+
+const Table<CaseConfig>& case_table() {
+  static const Table<CaseConfig> table{
+      "Top level",
+      "",
+      {text({"title", "", "", "case title"}, &CaseConfig::title),
+       extends_key(),
+       section({"domain", "", "", "outer and inner rectangles"}, &CaseConfig::domain,
+               &domain_table),
+       section({"mesh", "", "", "block mesh"}, &CaseConfig::mesh, &mesh_table),
+       map_list({"materials", "", "Tables 3.1, 3.2, 5.1, 5.4: rock parameters",
+                 "elastic material zones"},
+                &CaseConfig::materials, &material_table, 1,
+                "one material with the item defaults", check_material_item),
+       section({"joints", "", "Table 3.1: fracture parameters", "default joint strength"},
+               &CaseConfig::joints, &joint_table),
+       map_list({"fractures", "", "§3.1-3.5, §5.2-5.4", "line features"},
+                &CaseConfig::fractures, &fracture_table, 0, "none", check_fracture_item),
+       breakable_patterns_key(),
+       section({"far_field", "", "§3.1: background stress", "far-field stress"},
+               &CaseConfig::far_field, &far_field_table),
+       map_list({"point_loads", "", "", "concentrated forces"}, &CaseConfig::point_loads,
+                &point_load_table, 0, "none"),
+       point({"body_force", "N/m^3", "", "body force per unit volume, e.g. [0, -rho g]"},
+             &CaseConfig::body_force_N_m3, "any"),
+       fixed_point_list({"fixed_points", "m", "§3.3, §5.2: outer boundary fixed at corners",
+                         "points held fixed (stiff springs)"}),
+       optional_section({"fluid", "", "Table 3.1: fluid parameters",
+                         "fracturing fluid; present: the coupled flow network is solved"},
+                        &CaseConfig::fluid, &fluid_table),
+       map_list({"injections", "", "§3.2: Q0 at the origin", "fluid sources"},
+                &CaseConfig::injections, &injection_table, 0, "none"),
+       map_list({"probes", "", "", "pressure and aperture gauges"}, &CaseConfig::probes,
+                &probe_table, 0, "none"),
+       section({"contact", "", "Table 3.1: numerical parameters", "contact model"},
+               &CaseConfig::contact, &contact_table),
+       section({"numerics", "", "§2.1, §2.3, §2.4", "iterations and tolerances"},
+               &CaseConfig::numerics, &numerics_table),
+       section({"time", "", "Table 3.1: time step", "time stepping"}, &CaseConfig::time,
+               &time_table),
+       section({"output", "", "", "what is written"}, &CaseConfig::output, &output_table)}};
+  return table;
+}
+
+}  // namespace hfdda::io
