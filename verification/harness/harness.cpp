@@ -237,28 +237,35 @@ std::string known_numbers(const Metrics& m) {
   return known.empty() ? "(none)" : known;
 }
 
-/// The check `node` for one variant (v) or for the study (v null), or nothing if it
-/// does not apply to this variant or tier.
-std::optional<Check> make_check(const Study& s, YAML::Node node, const VariantOutcome* v, const StudyOutcome& study) {
-  if (!listed(node["tiers"], study.tier)) return std::nullopt;
-  if (v) {
-    if (!listed(node["variants"], v->variant().name)) return std::nullopt;
-    if (node["if_built"] && node["if_built"].as<bool>() && !v->run.built) return std::nullopt;
-    // The first `by_variant` entry naming this variant (and tier) overrides fields.
-    if (const YAML::Node overrides = node["by_variant"]) {
-      for (const auto& o : overrides) {
-        if (!o["variants"]) study_error(s, o, "a by_variant entry needs 'variants'");
-        if (!listed(o["variants"], v->variant().name) || !listed(o["tiers"], study.tier)) continue;
-        YAML::Node merged = YAML::Clone(node);
-        for (const auto& kv : o) {
-          const std::string key = kv.first.as<std::string>();
-          if (key != "variants" && key != "tiers") merged[key] = kv.second;
-        }
-        node = merged;
-        break;
+/// The check as it applies to variant v: the first `by_variant` entry naming v (and the
+/// tier) overrides its fields. Never assigns to a YAML::Node (yaml-cpp's assignment
+/// rewrites the shared node, i.e. the study itself): copies and clones only.
+YAML::Node effective_check(const Study& s, const YAML::Node& node, const VariantOutcome& v, const std::string& tier) {
+  if (const YAML::Node overrides = node["by_variant"]) {
+    for (const auto& o : overrides) {
+      if (!o["variants"]) study_error(s, o, "a by_variant entry needs 'variants'");
+      if (!listed(o["variants"], v.variant().name) || !listed(o["tiers"], tier)) continue;
+      YAML::Node merged = YAML::Clone(node);
+      for (const auto& kv : o) {
+        const std::string key = kv.first.as<std::string>();
+        if (key != "variants" && key != "tiers") merged[key] = YAML::Clone(kv.second);
       }
+      return merged;
     }
   }
+  return node;
+}
+
+/// The check `original` for one variant (v) or for the study (v null), or nothing if it
+/// does not apply to this variant or tier.
+std::optional<Check> make_check(const Study& s, const YAML::Node& original, const VariantOutcome* v,
+                                const StudyOutcome& study) {
+  if (!listed(original["tiers"], study.tier)) return std::nullopt;
+  if (v) {
+    if (!listed(original["variants"], v->variant().name)) return std::nullopt;
+    if (original["if_built"] && original["if_built"].as<bool>() && !v->run.built) return std::nullopt;
+  }
+  const YAML::Node node = v ? effective_check(s, original, *v, study.tier) : original;
   for (const char* key : {"name", "metric", "comparison", "threshold"})
     if (!node[key]) study_error(s, node, std::string("check needs '") + key + "'");
   Check c;
