@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "io/output.hpp"
+#include "simulation/run_record.hpp"
 #include "simulation/snapshots.hpp"
 
 namespace hfdda::simulation {
@@ -47,77 +48,6 @@ struct OutputSeries {
   }
 };
 
-/// State of the flow network (zeros without one). Extent: open ends of fluid-filled
-/// joints, relative to the (first) injection point.
-const std::vector<std::string> kNetworkColumns{
-    "wetted_joints",  "injection_pressure_Pa", "injection_aperture_m", "open_xmin_m",    "open_xmax_m",
-    "open_ymin_m",    "open_ymax_m",           "mass_injected_kg",     "mass_stored_kg", "mass_leaked_kg",
-    "mass_balance_error"};
-
-std::vector<std::string> history_columns(const Model& model) {
-  std::vector<std::string> columns{
-      "step", "time_s", "open_close_iterations", "alm_iterations", "alm_stalls", "alm_stall_mismatch", "alm_displacement_change", "factorizations", "bonds_broken",
-      "state_changes", "vertex_vertex_activations", "active_vertex_vertex", "open_joint_ends",
-      "max_aperture_m", "max_penetration_m", "step_wall_s", "elapsed_wall_s",
-      "step_cuts", "fractures_wetted", "flow_newton_iterations", "flow_newton_restarts", "flow_max_residual"};
-  columns.insert(columns.end(), kNetworkColumns.begin(), kNetworkColumns.end());
-  for (const auto& probe : model.config.probes) {
-    columns.push_back("probe_" + probe.name + "_pressure_Pa");
-    columns.push_back("probe_" + probe.name + "_aperture_m");
-  }
-  return columns;
-}
-
-std::vector<double> history_row(const Model& model, int step, double time_s, const StepStatistics& st,
-                                double elapsed) {
-  const dda::BlockSystem& system = *model.system;
-  int open_ends = 0;
-  double max_aperture = 0.0;
-  for (std::size_t j = 0; j < system.mesh().joints.size(); ++j)
-    for (int end = 0; end < 2; ++end) {
-      open_ends += system.contacts()[2 * j + end].state == dda::ContactState::open;
-      max_aperture = std::max(max_aperture, system.joint_gap(static_cast<int>(j), end));
-    }
-  std::vector<double> row{double(step), time_s, double(st.open_close_iterations), double(st.alm_iterations),
-                          double(st.alm_stalls), st.max_alm_stall_mismatch, st.max_alm_displacement_change,
-                          double(st.factorizations), double(st.bonds_broken), double(st.state_changes),
-                          double(st.vertex_vertex_activations), double(st.active_vertex_vertex), double(open_ends),
-                          max_aperture, st.max_penetration_m, st.seconds_total, elapsed,
-                          double(st.step_cuts), double(st.fractures_wetted),
-                          double(st.flow_newton_iterations), double(st.flow_newton_restarts),
-                          st.max_flow_residual};
-  const fluid::FlowNetwork* flow = model.flow.get();
-  if (!flow) {
-    row.resize(row.size() + kNetworkColumns.size(), 0.0);
-  } else {
-    const auto& m = system.mesh();
-    const int inlet = model.injection_points.empty() ? -1 : model.injection_points.front();
-    const Vec2 origin = inlet >= 0 ? m.points[inlet] : Vec2(0, 0);
-    int wetted = 0;
-    double xmin = 0, xmax = 0, ymin = 0, ymax = 0;
-    for (int j = 0; j < flow->n_fractures(); ++j) {
-      if (!flow->wetted(j)) continue;
-      ++wetted;
-      for (int end = 0; end < 2; ++end) {
-        if (system.contacts()[2 * j + end].state != dda::ContactState::open) continue;
-        const Vec2 r = m.points[end == 0 ? m.joints[j].point_p : m.joints[j].point_q] - origin;
-        xmin = std::min(xmin, r.x()), xmax = std::max(xmax, r.x());
-        ymin = std::min(ymin, r.y()), ymax = std::max(ymax, r.y());
-      }
-    }
-    row.insert(row.end(), {double(wetted), inlet >= 0 ? flow->pressure(inlet) : 0.0,
-                           inlet >= 0 ? flow->aperture_at_point(inlet) : 0.0, xmin, xmax, ymin, ymax,
-                           flow->injected_mass(), flow->stored_mass(), flow->leaked_mass(),
-                           flow->mass_balance_error()});
-  }
-  for (std::size_t i = 0; i < model.config.probes.size(); ++i) {
-    const int point = model.probe_points[i];
-    row.push_back(flow ? flow->pressure(point) : 0.0);
-    row.push_back(flow ? flow->aperture_at_point(point) : 0.0);
-  }
-  return row;
-}
-
 }  // namespace
 
 void write_summary(const Model& model, const RunOptions& options, const RunResult& r) {
@@ -137,18 +67,12 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
                {"points", system.mesh().points.size()},
                {"unknowns", 6 * system.n_blocks()},
                {"build_ms", model.mesh_seconds_ms}};
-  j["solver"] = {{"contact_method", system.settings().augmented_lagrangian ? "augmented_lagrangian" : "penalty"},
-                 {"open_close_iterations", r.totals.open_close_iterations},
-                 {"alm_iterations", r.totals.alm_iterations},
-                 {"alm_stalls", r.totals.alm_stalls},
-                 {"max_alm_stall_mismatch", r.totals.max_alm_stall_mismatch},
-                 {"factorizations", r.totals.factorizations},
-                 {"bonds_broken", r.totals.bonds_broken},
-                 {"vertex_vertex_activations", r.totals.vertex_vertex_activations},
-                 {"max_active_vertex_vertex", r.totals.max_active_vertex_vertex},
-                 {"seconds_assembly", r.totals.seconds_assembly},
-                 {"seconds_factorization", r.totals.seconds_factorization},
-                 {"seconds_solve", r.totals.seconds_solve}};
+  nlohmann::json& solver = j["solver"];
+  solver["contact_method"] = system.settings().augmented_lagrangian ? "augmented_lagrangian" : "penalty";
+  for (const SummaryField& f : summary_solver_fields()) {
+    const double v = f.value(r.totals);
+    solver[f.name] = f.integer ? nlohmann::json(static_cast<long long>(v)) : nlohmann::json(v);
+  }
   io::write_file_atomically(options.output_dir + "/summary.json", j.dump(2) + "\n");
 }
 
@@ -156,11 +80,15 @@ RunResult run(Model& model, const RunOptions& options) {
   const auto start = Clock::now();
   const auto& time = model.config.time;
   std::filesystem::create_directories(options.output_dir);
-  io::HistoryCsv history(options.output_dir + "/history.csv", history_columns(model));
+  const std::vector<OutputColumn> columns = history_columns(model);
+  std::vector<std::string> names;
+  for (const OutputColumn& c : columns) names.push_back(c.name);
+  io::HistoryCsv history(options.output_dir + "/history.csv", names);
   OutputSeries outputs(options.output_dir, options.write_vtu && model.config.output.vtu);
   const bool terminal = !options.quiet && isatty(fileno(stderr));
 
   RunResult result;
+  result.record = RunRecord(names);
   const int n_steps = std::max(1, static_cast<int>(std::llround(time.end_time_s / time.dt_s)));
   outputs.write(model, 0, 0.0, false);
   for (int step = 1; step <= n_steps; ++step) {
@@ -178,7 +106,12 @@ RunResult run(Model& model, const RunOptions& options) {
     result.totals.accumulate(st);
     result.time_s = t;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    history.append(history_row(model, step, t, st, elapsed));
+    const StepContext context = make_step_context(model, step, t, st, elapsed);
+    std::vector<double> row;
+    row.reserve(columns.size());
+    for (const OutputColumn& c : columns) row.push_back(c.value(context));
+    history.append(row);
+    result.record.append(std::move(row));
     const int every = model.config.output.every_steps;
     if (step == n_steps || (every > 0 && step % every == 0)) outputs.write(model, step, t, step == n_steps);
     if (terminal)

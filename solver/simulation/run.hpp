@@ -6,6 +6,7 @@
 
 #include "core/step_statistics.hpp"
 #include "simulation/model.hpp"
+#include "simulation/run_record.hpp"
 
 namespace hfdda::simulation {
 
@@ -22,9 +23,11 @@ struct RunResult {
   double time_s = 0.0;      ///< simulated time reached
   double wall_seconds = 0.0;
   StepStatistics totals;    ///< accumulated over the completed steps
+  RunRecord record;         ///< history.csv in memory: one row per completed step
 };
 
-/// Runs the case to its end time, writing history.csv every step, joint CSV and VTU
+/// Runs the case to its end time, writing history.csv every step (and keeping the same
+/// rows in RunResult::record; columns in simulation/run_record.hpp), joint CSV and VTU
 /// at output steps and at the end, and summary.json. A step that fails to converge
 /// ends the run with completed = false; everything up to the last committed step is
 /// written, including joints_final.csv.

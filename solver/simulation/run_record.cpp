@@ -1,0 +1,225 @@
+#include "simulation/run_record.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace hfdda::simulation {
+
+StepContext make_step_context(const Model& model, int step, double time_s, const StepStatistics& stats,
+                              double elapsed_s) {
+  StepContext c{model, step, time_s, stats, elapsed_s};
+  const dda::BlockSystem& system = *model.system;
+  const mesh::Mesh& m = system.mesh();
+  for (std::size_t j = 0; j < m.joints.size(); ++j)
+    for (int end = 0; end < 2; ++end) {
+      c.open_joint_ends += system.contacts()[2 * j + end].state == dda::ContactState::open;
+      c.max_aperture_m = std::max(c.max_aperture_m, system.joint_gap(static_cast<int>(j), end));
+    }
+  const fluid::FlowNetwork* flow = model.flow.get();
+  if (!flow) return c;
+  c.inlet_point = model.injection_points.empty() ? -1 : model.injection_points.front();
+  const Vec2 origin = c.inlet_point >= 0 ? m.points[c.inlet_point] : Vec2(0, 0);
+  for (int j = 0; j < flow->n_fractures(); ++j) {
+    if (!flow->wetted(j)) continue;
+    ++c.wetted_joints;
+    for (int end = 0; end < 2; ++end) {
+      if (system.contacts()[2 * j + end].state != dda::ContactState::open) continue;
+      const Vec2 r = m.points[end == 0 ? m.joints[j].point_p : m.joints[j].point_q] - origin;
+      c.open_xmin_m = std::min(c.open_xmin_m, r.x()), c.open_xmax_m = std::max(c.open_xmax_m, r.x());
+      c.open_ymin_m = std::min(c.open_ymin_m, r.y()), c.open_ymax_m = std::max(c.open_ymax_m, r.y());
+    }
+  }
+  return c;
+}
+
+namespace {
+
+using Value = std::function<double(const StepContext&)>;
+
+/// A column of the flow network: its value, or 0 for a case without one.
+Value flow_value(std::function<double(const StepContext&, const fluid::FlowNetwork&)> f) {
+  return [f = std::move(f)](const StepContext& c) { return c.model.flow ? f(c, *c.model.flow) : 0.0; };
+}
+
+/// A column of the flow network at the first injection point (0 without one).
+Value inlet_value(double (fluid::FlowNetwork::*f)(int) const) {
+  return flow_value([f](const StepContext& c, const fluid::FlowNetwork& flow) {
+    return c.inlet_point >= 0 ? (flow.*f)(c.inlet_point) : 0.0;
+  });
+}
+
+std::vector<OutputColumn> make_fixed_columns() {
+  const std::string extent =
+      " of the open ends of fluid-filled joints, relative to the injection point (a broken but dry joint does "
+      "not count)";
+  return {
+      {"step", "-", "step number (1 for the first step)", [](const StepContext& c) { return double(c.step); }},
+      {"time_s", "s", "simulated time at the end of the step", [](const StepContext& c) { return c.time_s; }},
+      {"open_close_iterations", "-", "open-close (outer) iterations of the step",
+       [](const StepContext& c) { return double(c.stats.open_close_iterations); }},
+      {"alm_iterations", "-", "ALM iterations (linear solves of the contact iterations)",
+       [](const StepContext& c) { return double(c.stats.alm_iterations); }},
+      {"alm_stalls", "-",
+       "ALM solves ended because the corrections stopped changing: a loop of closed contacts around a point "
+       "whose reference points no longer close, by nanometres, after slips and rotations",
+       [](const StepContext& c) { return double(c.stats.alm_stalls); }},
+      {"alm_stall_mismatch", "-",
+       "largest gap or shear left at a stall, over the contact's length (a stall is accepted only below 1e-6)",
+       [](const StepContext& c) { return c.stats.max_alm_stall_mismatch; }},
+      {"alm_displacement_change", "-",
+       "largest ||D(m+1) - D(m)|| / ||D(m+1)|| of the last inner iteration (erratum 2, docs/seed_errata.md: the "
+       "inner iterations stop on the contact forces, this shows what that means for D)",
+       [](const StepContext& c) { return c.stats.max_alm_displacement_change; }},
+      {"factorizations", "-", "factorisations of the stiffness matrix",
+       [](const StepContext& c) { return double(c.stats.factorizations); }},
+      {"bonds_broken", "-", "bonds broken in the step", [](const StepContext& c) { return double(c.stats.bonds_broken); }},
+      {"state_changes", "-", "contact state changes applied",
+       [](const StepContext& c) { return double(c.stats.state_changes); }},
+      {"vertex_vertex_activations", "-", "vertex-vertex contacts activated in the step",
+       [](const StepContext& c) { return double(c.stats.vertex_vertex_activations); }},
+      {"active_vertex_vertex", "-", "vertex-vertex contacts active at the end of the step",
+       [](const StepContext& c) { return double(c.stats.active_vertex_vertex); }},
+      {"open_joint_ends", "-", "joint ends in the open state", [](const StepContext& c) { return double(c.open_joint_ends); }},
+      {"max_aperture_m", "m", "largest joint-end gap", [](const StepContext& c) { return c.max_aperture_m; }},
+      {"max_penetration_m", "m", "largest penetration", [](const StepContext& c) { return c.stats.max_penetration_m; }},
+      {"step_wall_s", "s", "wall time of the step", [](const StepContext& c) { return c.stats.seconds_total; }},
+      {"elapsed_wall_s", "s", "wall time of the run so far", [](const StepContext& c) { return c.elapsed_s; }},
+      {"step_cuts", "-", "halvings of the step after a failed attempt (0 without a flow network)",
+       [](const StepContext& c) { return double(c.stats.step_cuts); }},
+      {"fractures_wetted", "-", "joints that took in fluid during the step",
+       [](const StepContext& c) { return double(c.stats.fractures_wetted); }},
+      {"flow_newton_iterations", "-", "Newton iterations of the flow solves",
+       [](const StepContext& c) { return double(c.stats.flow_newton_iterations); }},
+      {"flow_newton_restarts", "-",
+       "fallbacks used after the flow Newton stalled: pseudo-transient continuation, restarts with the dry nodes "
+       "at their neighbours' pressure, continuation in the step's inflows",
+       [](const StepContext& c) { return double(c.stats.flow_newton_restarts); }},
+      {"flow_max_residual", "-", "largest relative mass residual of a flow solve",
+       [](const StepContext& c) { return c.stats.max_flow_residual; }},
+      {"wetted_joints", "-", "fluid-filled joints (0 without a flow network)",
+       [](const StepContext& c) { return double(c.wetted_joints); }},
+      {"injection_pressure_Pa", "Pa", "fluid pressure at the first injection point",
+       inlet_value(&fluid::FlowNetwork::pressure)},
+      {"injection_aperture_m", "m", "aperture at the first injection point",
+       inlet_value(&fluid::FlowNetwork::aperture_at_point)},
+      {"open_xmin_m", "m", "smallest x" + extent, [](const StepContext& c) { return c.open_xmin_m; }},
+      {"open_xmax_m", "m", "largest x" + extent, [](const StepContext& c) { return c.open_xmax_m; }},
+      {"open_ymin_m", "m", "smallest y" + extent, [](const StepContext& c) { return c.open_ymin_m; }},
+      {"open_ymax_m", "m", "largest y" + extent, [](const StepContext& c) { return c.open_ymax_m; }},
+      {"mass_injected_kg", "kg", "fluid mass injected since t = 0",
+       flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.injected_mass(); })},
+      {"mass_stored_kg", "kg", "fluid mass stored in the joints",
+       flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.stored_mass(); })},
+      {"mass_leaked_kg", "kg", "fluid mass leaked off since t = 0",
+       flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.leaked_mass(); })},
+      {"mass_balance_error", "-", "|initial + injected - stored - leaked| / (initial + injected)",
+       flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.mass_balance_error(); })},
+  };
+}
+
+std::string escape_cell(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+const std::vector<OutputColumn>& fixed_history_columns() {
+  static const std::vector<OutputColumn> columns = make_fixed_columns();
+  return columns;
+}
+
+std::vector<OutputColumn> probe_columns(const std::string& name, std::size_t index) {
+  return {{"probe_" + name + "_pressure_Pa", "Pa", "fluid pressure at probe `" + name + "` (0 without a flow network)",
+           [index](const StepContext& c) {
+             return c.model.flow ? c.model.flow->pressure(c.model.probe_points[index]) : 0.0;
+           }},
+          {"probe_" + name + "_aperture_m", "m", "aperture at probe `" + name + "` (0 without a flow network)",
+           [index](const StepContext& c) {
+             return c.model.flow ? c.model.flow->aperture_at_point(c.model.probe_points[index]) : 0.0;
+           }}};
+}
+
+std::vector<OutputColumn> history_columns(const Model& model) {
+  std::vector<OutputColumn> columns = fixed_history_columns();
+  for (std::size_t i = 0; i < model.config.probes.size(); ++i)
+    for (OutputColumn& c : probe_columns(model.config.probes[i].name, i)) columns.push_back(std::move(c));
+  return columns;
+}
+
+std::string history_columns_markdown() {
+  std::string text = "| column | unit | meaning |\n|---|---|---|\n";
+  std::vector<OutputColumn> columns = fixed_history_columns();
+  for (OutputColumn& c : probe_columns("<name>", 0)) columns.push_back(std::move(c));
+  for (const OutputColumn& c : columns)
+    text += "| `" + c.name + "` | " + c.unit + " | " + escape_cell(c.description) + " |\n";
+  return text;
+}
+
+RunRecord::RunRecord(std::vector<std::string> columns) : columns_(std::move(columns)) {
+  for (std::size_t i = 0; i < columns_.size(); ++i)
+    if (!index_.emplace(columns_[i], i).second)
+      throw std::invalid_argument("RunRecord: column '" + columns_[i] + "' appears twice");
+}
+
+std::size_t RunRecord::column(const std::string& name) const {
+  const auto it = index_.find(name);
+  if (it != index_.end()) return it->second;
+  std::string known;
+  for (const std::string& c : columns_) known += (known.empty() ? "" : ", ") + c;
+  throw std::out_of_range("run record has no column '" + name + "'; known columns: " + known);
+}
+
+double RunRecord::value(std::size_t row, const std::string& name) const {
+  const std::size_t c = column(name);
+  if (row >= rows_.size())
+    throw std::out_of_range("run record has " + std::to_string(rows_.size()) + " rows; row " + std::to_string(row) +
+                            " requested (column '" + name + "')");
+  return rows_[row][c];
+}
+
+std::vector<double> RunRecord::series(const std::string& name) const {
+  const std::size_t c = column(name);
+  std::vector<double> out;
+  out.reserve(rows_.size());
+  for (const auto& r : rows_) out.push_back(r[c]);
+  return out;
+}
+
+void RunRecord::append(std::vector<double> row) {
+  if (row.size() != columns_.size())
+    throw std::invalid_argument("RunRecord::append: " + std::to_string(row.size()) + " values for " +
+                                std::to_string(columns_.size()) + " columns");
+  rows_.push_back(std::move(row));
+}
+
+const std::vector<SummaryField>& summary_solver_fields() {
+  static const std::vector<SummaryField> fields{
+      {"open_close_iterations", "open-close iterations of the run",
+       [](const StepStatistics& t) { return double(t.open_close_iterations); }, true},
+      {"alm_iterations", "ALM iterations of the run", [](const StepStatistics& t) { return double(t.alm_iterations); },
+       true},
+      {"alm_stalls", "ALM solves ended by the stall test", [](const StepStatistics& t) { return double(t.alm_stalls); },
+       true},
+      {"max_alm_stall_mismatch", "largest mismatch accepted at a stall",
+       [](const StepStatistics& t) { return t.max_alm_stall_mismatch; }},
+      {"factorizations", "factorisations of the stiffness matrix",
+       [](const StepStatistics& t) { return double(t.factorizations); }, true},
+      {"bonds_broken", "bonds broken", [](const StepStatistics& t) { return double(t.bonds_broken); }, true},
+      {"vertex_vertex_activations", "vertex-vertex contacts activated",
+       [](const StepStatistics& t) { return double(t.vertex_vertex_activations); }, true},
+      {"max_active_vertex_vertex", "largest number of active vertex-vertex contacts at the end of a step",
+       [](const StepStatistics& t) { return double(t.max_active_vertex_vertex); }, true},
+      {"seconds_assembly", "wall time of the assembly [s]", [](const StepStatistics& t) { return t.seconds_assembly; }},
+      {"seconds_factorization", "wall time of the factorisations [s]",
+       [](const StepStatistics& t) { return t.seconds_factorization; }},
+      {"seconds_solve", "wall time of the solves [s]", [](const StepStatistics& t) { return t.seconds_solve; }},
+  };
+  return fields;
+}
+
+}  // namespace hfdda::simulation
