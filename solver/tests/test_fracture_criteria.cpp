@@ -21,7 +21,10 @@
 #include <utility>
 #include <vector>
 
+#include "coupling/coupled_step.hpp"
+#include "coupling/prescribed_pressure.hpp"
 #include "dda/block_system.hpp"
+#include "fracture/fracture_criteria.hpp"
 #include "mesh/mesh.hpp"
 
 namespace hfdda::dda {
@@ -41,6 +44,7 @@ struct JointEnd {
 struct Scenario {
   mesh::Mesh mesh;
   MechanicsSettings settings;
+  fracture::FractureRules rules;  ///< the failure rules of seed 2.3 under test
   Eigen::Matrix2d far_field = Eigen::Matrix2d::Zero();  ///< on every boundary edge
   bool in_situ = false;  ///< the far field is also the initial stress: at rest in equilibrium
   std::vector<Vec2> fixed_points;
@@ -67,8 +71,8 @@ Scenario grid(int nx, int ny) {
       100.0 * kYoungs;
   s.settings.alm_force_tolerance = 1e-10;
   s.settings.max_alm_iterations = 500;
-  s.settings.failure_needs_open_neighbour_and_fluid = false;
-  s.settings.shear_failure_of_intact_joints = false;
+  s.rules.failure_needs_open_neighbour_and_fluid = false;
+  s.rules.shear_failure_of_intact_joints = false;
   return s;
 }
 
@@ -139,16 +143,17 @@ Outcome run(const Scenario& s) {
   if (s.in_situ) system.set_in_situ_stress(s.far_field);
   for (const Vec2& p : s.fixed_points) system.add_fixed_point(p);
   for (const auto& [at, force] : s.point_loads) system.add_point_load(at, force);
-  if (!s.fluid.empty()) {
-    std::vector<double> pressure(s.mesh.points.size(), 0.0);
-    std::vector<char> wetted(s.mesh.joints.size(), 0);
-    for (auto [j, p] : s.fluid) {
-      wetted[j] = 1;
-      pressure[s.mesh.joints[j].point_p] = pressure[s.mesh.joints[j].point_q] = p;
-    }
-    system.set_fluid_pressure(pressure, wetted);
+  // Fluid at prescribed pressures on the wetted joints, through the coupled step.
+  std::vector<double> pressure(s.mesh.points.size(), 0.0);
+  std::vector<char> wetted(s.mesh.joints.size(), 0);
+  for (auto [j, p] : s.fluid) {
+    wetted[j] = 1;
+    pressure[s.mesh.joints[j].point_p] = pressure[s.mesh.joints[j].point_q] = p;
   }
-  out.stats = system.step(s.dt_s);
+  coupling::PrescribedPressure fluid(system.mesh(), pressure, wetted);
+  std::vector<coupling::FluidLoadModel*> fluids;
+  if (!s.fluid.empty()) fluids.push_back(&fluid);
+  out.stats = coupling::CoupledStep(system, fluids, s.rules).advance(s.dt_s, 0);
   return out;
 }
 
@@ -235,7 +240,7 @@ TEST(FractureTension, StrengthScalesWithContactLength) {
 TEST(FractureTension, BondAtTipOfPressurisedFractureHoldsBelowAndBreaksAboveStrength) {
   auto scenario = [](const mesh::JointProperties& tested) {
     Scenario s = square_of_four();
-    s.settings.failure_needs_open_neighbour_and_fluid = true;
+    s.rules.failure_needs_open_neighbour_and_fluid = true;
     set_joint(s, kLeft, kCentre, initial_fracture());
     fill_joint(s, kLeft, kCentre, 1.0e6);
     set_joint(s, kCentre, kRight, tested);
@@ -267,7 +272,7 @@ TEST(FractureShear, BondHoldsJustBelowAndBreaksJustAboveMohrCoulombLimit) {
   const double limit = c0 + tan_deg(phi) * sn;
   for (double ratio : {0.99, 1.01}) {
     Scenario s = stacked_pair(bond(1e6, c0, phi), stress(0, -sn, ratio * limit));
-    s.settings.shear_failure_of_intact_joints = true;
+    s.rules.shear_failure_of_intact_joints = true;
     const Outcome o = run(s);
     const bool above = ratio > 1.0;
     EXPECT_EQ(o.stats.bonds_broken, above ? 2 : 0) << "load / strength " << ratio;
@@ -293,8 +298,8 @@ TEST(FractureShear, IntactBondsDoNotFailInShearUnlessEnabled) {
 TEST(FractureShear, BondNextToPressurisedFractureHoldsBelowAndBreaksAboveMohrCoulombLimit) {
   auto scenario = [](const mesh::JointProperties& tested) {
     Scenario s = square_of_four();
-    s.settings.failure_needs_open_neighbour_and_fluid = true;
-    s.settings.shear_failure_of_intact_joints = true;
+    s.rules.failure_needs_open_neighbour_and_fluid = true;
+    s.rules.shear_failure_of_intact_joints = true;
     s.far_field = stress(-1.0e6, -3.0e6, 0.0);
     set_joint(s, kCentre, kTop, initial_fracture());
     fill_joint(s, kCentre, kTop, 2.0e6);
@@ -332,7 +337,7 @@ enum class Neighbour { closed_dry, open_dry, closed_pressurised, open_pressurise
 Outcome pulled_middle_line(Neighbour left_half, bool rule) {
   const double t0 = 0.5e6;
   Scenario s = square_of_four();
-  s.settings.failure_needs_open_neighbour_and_fluid = rule;
+  s.rules.failure_needs_open_neighbour_and_fluid = rule;
   s.far_field = stress(0.0, 2.0 * t0, 0.0);
   set_joint(s, kCentre, kRight, bond(t0));
   if (left_half == Neighbour::open_dry || left_half == Neighbour::open_pressurised)
@@ -392,7 +397,7 @@ struct ColumnResult {
 
 ColumnResult pulled_column(double f_top, double f_mid, double tie_tolerance) {
   Scenario s = grid(1, 3);
-  s.settings.tie_tolerance = tie_tolerance;
+  s.rules.tie_tolerance = tie_tolerance;
   s.fixed_points = {{0.0, 0.0}, {1.0, 0.0}};
   s.point_loads = {{{0.5, 2.5}, {0.0, f_top}}, {{0.5, 1.5}, {0.0, f_mid}}};
   s.dt_s = 0.1;  // inertia ~1e-5 of the forces: equal loads give equal stresses
