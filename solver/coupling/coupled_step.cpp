@@ -119,7 +119,7 @@ Eigen::VectorXd CoupledStep::solve_contacts(StepStatistics& stats) {
     for (FluidLoadModel* f : fluids_) f->respond(mechanics_, d);
     stats.seconds_solve += seconds_since(start);
     ++stats.alm_iterations;
-    // ||D(m+1) - D(m)|| / ||D(m+1)|| of the inner iterations (NOTES erratum 2), reported.
+    // ||D(m+1) - D(m)|| / ||D(m+1)|| of the inner iterations (erratum 2 in docs/seed_errata.md), reported.
     const double d_norm = d.norm();
     displacement_change = it == 0 || d_norm == 0.0 ? 0.0 : (d - d_previous).norm() / d_norm;
     if (mechanics_.update_multipliers(d, it, stats) != dda::ContactIteration::again) break;

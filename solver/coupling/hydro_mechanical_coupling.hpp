@@ -1,6 +1,6 @@
 #pragma once
 // The fully implicit hydro-mechanical step (seed 2.4, Figures 2.7-2.8), without the
-// seed's stabilisation constants (NOTES section 4).
+// seed's stabilisation constants (docs/formulation.md section 4.6).
 //
 // Within one open-close iteration the contact springs are fixed, so the blocks are
 // linear: D = K^-1 (F_mech + B p), with B the trapezoidal pressure loads of the

@@ -1,5 +1,5 @@
 #pragma once
-// First-order DDA block kinematics (Shi 1988; seed section 2.2 with NOTES erratum 1).
+// First-order DDA block kinematics (Shi 1988; seed section 2.2 with erratum 1 in docs/seed_errata.md).
 //
 // A block moves with the six unknowns D = (u0, v0, r0, ex, ey, gxy) at its centroid
 // (x0, y0); the displacement of a point (x, y) of the block is U = T(x, y) D with
@@ -18,7 +18,7 @@ using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Mat26 = Eigen::Matrix<double, 2, 6>;
 using Row6 = Eigen::Matrix<double, 1, 6>;
 
-/// Shi's displacement matrix T(x, y) about the block centroid (NOTES erratum 1).
+/// Shi's displacement matrix T(x, y) about the block centroid (erratum 1 in docs/seed_errata.md).
 inline Mat26 displacement_matrix(const Vec2& point, const Vec2& centroid) {
   const double dx = point.x() - centroid.x();
   const double dy = point.y() - centroid.y();

@@ -1,5 +1,5 @@
 #pragma once
-// Block contacts of the DDA (seed section 2.3, NOTES section 3).
+// Block contacts of the DDA (seed section 2.3, docs/formulation.md section 3).
 //
 // Every joint (edge shared by two blocks) gives two contacts, one at each end. A
 // joint-end contact carries the seed's symmetric pair of vertex-edge springs

@@ -104,7 +104,7 @@ struct FluidConfig {
   double bulk_modulus_Pa = 2.2e9;       ///< Kf; compressibility c_f = 1 / Kf
   double viscosity_Pa_s = 1.0e-3;       ///< mu (cubic law, eq. 2.2)
   double reference_pressure_Pa = 0.0;   ///< p0 of eq. 2.6
-  /// Carter coefficient C_L of each wall [m/s^0.5]; both walls leak (NOTES erratum 4).
+  /// Carter coefficient C_L of each wall [m/s^0.5]; both walls leak (erratum 4 in docs/seed_errata.md).
   double leak_off_coefficient_m_sqrt_s = 0.0;
 };
 
@@ -165,7 +165,7 @@ struct NumericsConfig {
   int max_open_close_iterations = 200;
   double tie_tolerance = 1.0e-3;        ///< seed 2.3 (iii): failures within 0.1 % split
   bool shear_failure_of_intact_joints = false;  ///< false: seed 2.3 (ii), tension first
-  // Coupled hydro-mechanical step (seed 2.1, 2.4; NOTES section 4).
+  // Coupled hydro-mechanical step (seed 2.1, 2.4; docs/formulation.md section 4).
   double min_width_main_m = 0.5e-6;     ///< minimum aperture once wetted, network interior
   double min_width_tip_m = 0.1e-6;      ///< minimum aperture at fracture tips
   double max_closing_fraction = 0.05;   ///< an aperture may close by at most this per step
@@ -217,7 +217,7 @@ CaseConfig load_case_file(const std::string& path);
 CaseConfig load_case_text(const std::string& yaml_text, const std::string& file_label);
 
 /// The key reference (Markdown) that docs/case_file.md holds, generated from the key
-/// tables that drive parsing and validation, so the two cannot drift (STYLE.md item 7).
+/// tables that drive parsing and validation, so the two cannot drift.
 std::string case_file_reference_markdown();
 
 }  // namespace hfdda::io

@@ -227,7 +227,7 @@ const Table<FluidConfig>& fluid_table() {
                "Carter coefficient C_L of one fracture wall; 0: no leak-off. Both walls "
                "leak: a wetted joint of length L loses 2 C_L L / sqrt(t - t0) per metre of "
                "depth, t0 the time fluid reached it (the seed's eq. 2.3 counts one wall; "
-               "NOTES erratum 4)"},
+               "erratum 4 in docs/seed_errata.md)"},
               &FluidConfig::leak_off_coefficient_m_sqrt_s, at_least(0))}};
   return table;
 }
@@ -349,7 +349,7 @@ const Table<NumericsConfig>& numerics_table() {
        number({"max_closing_fraction", "-", "§2.1: 5 %",
                "largest fraction of its aperture a wetted joint may close in one step"},
               &NumericsConfig::max_closing_fraction, interval(0, true, 1, true)),
-       number({"coupling_tolerance", "-", "§2.4, eqs. 2.25-2.26 (NOTES erratum 2)",
+       number({"coupling_tolerance", "-", "§2.4, eqs. 2.25-2.26 (erratum 2 in docs/seed_errata.md)",
                "coupled-step stop: relative pressure change and relative mass residual "
                "below it"},
               &NumericsConfig::coupling_tolerance, greater_than(0)),

@@ -52,7 +52,7 @@ TEST(CaseFileDocs, ReferenceNamesEveryFluidKey) {
         "`initial_width`", "`bulk_modulus`", "`viscosity`", "`reference_pressure`",
         "`leak_off_coefficient`", "`mass_rate`", "`start_time`", "`min_width_main`",
         "`min_width_tip`", "`max_closing_fraction`", "`coupling_tolerance`",
-        "`max_coupling_iterations`", "`max_step_cuts`", "NOTES erratum 4",
+        "`max_coupling_iterations`", "`max_step_cuts`", "erratum 4 in docs/seed_errata.md",
         "`numerics.min_width_tip` <= `numerics.min_width_main`"})
     EXPECT_NE(reference.find(key), std::string::npos) << key;
 }

@@ -1,4 +1,4 @@
-// Unit tests of the DDA mechanics (NOTES section 3 "tests that pin the mechanics down").
+// Unit tests of the DDA mechanics (docs/formulation.md section 3.4 "tests that pin the mechanics down").
 
 #include <gtest/gtest.h>
 
@@ -61,7 +61,7 @@ TEST(DdaKinematics, RigidBodyMotionHasNoStrainEnergy) {
       const Vec2 uj = displacement_matrix(tri[j], g.centroid) * rotation;
       EXPECT_NEAR((ui - uj).dot(tri[i] - tri[j]), 0.0, 1e-18);
     }
-  // Strains produce the displacement gradient they name (NOTES erratum 1).
+  // Strains produce the displacement gradient they name (erratum 1 in docs/seed_errata.md).
   Vec6 strain = Vec6::Zero();
   strain << 0, 0, 0, 1e-3, -2e-3, 4e-3;
   const Vec2 u = displacement_matrix(g.centroid + Vec2(1.0, 0.0), g.centroid) * strain;
