@@ -176,8 +176,16 @@ void FlowNetwork::rebuild_trial_topology() {
 
 void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
                            Evaluation& out, bool with_jacobian) const {
+  evaluate_pressure(x, out);
+  evaluate_aperture(base, s, out);
+  evaluate_storage(x, out);
+  evaluate_flow(out);
+  if (!with_jacobian) return;
+  evaluate_jacobian(x, s, out);
+}
+
+void FlowNetwork::evaluate_pressure(const Eigen::VectorXd& x, Evaluation& out) const {
   const int n = static_cast<int>(trial_nodes_.size());
-  const int nf = static_cast<int>(trial_fractures_.size());
   // The unknown y of a node is its fill state: for y >= 0 the node is full at pressure
   // y and stores rho(y) V (eq. 2.6); for y < 0 it is a zero-pressure node (seed 2.1,
   // Figure 2.2) filled to the fraction 1 + y / P, storing rho(0) V (1 + y / P). The
@@ -196,6 +204,10 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
       out.pressure_slope[i] = (y + kPressureRounding) / (2.0 * kPressureRounding);
     }
   }
+}
+
+void FlowNetwork::evaluate_aperture(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, Evaluation& out) const {
+  const int nf = static_cast<int>(trial_fractures_.size());
   // w = max(w_mechanics, floor), its corner rounded by a parabola within 1 % of the
   // floor (C1, exact outside that band) so that Newton sees a smooth mass balance.
   out.aperture = base + s * out.pressure;
@@ -213,6 +225,11 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
       out.slope[e] = (z + band) / (2.0 * band);
     }
   }
+}
+
+void FlowNetwork::evaluate_storage(const Eigen::VectorXd& x, Evaluation& out) const {
+  const int n = static_cast<int>(trial_nodes_.size());
+  const int nf = static_cast<int>(trial_fractures_.size());
   out.density.resize(n);
   for (int i = 0; i < n; ++i) out.density[i] = fluid_.density(out.pressure[i]);
   out.volume.setZero(n);
@@ -227,6 +244,10 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     out.storage[i] = fill_density(x[i], i) * out.volume[i];
     out.residual[i] = out.storage[i] - old_mass_[i] + homotopy_ * (out.density[i] * leak_volume_[i] - injected_[i]);
   }
+}
+
+void FlowNetwork::evaluate_flow(Evaluation& out) const {
+  const int nf = static_cast<int>(trial_fractures_.size());
   out.eta.resize(nf);
   const double mu12 = 12.0 * fluid_.viscosity_Pa_s;
   for (int k = 0; k < nf; ++k) {
@@ -239,8 +260,11 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     out.residual[a] += outflow;
     out.residual[b] -= outflow;
   }
-  if (!with_jacobian) return;
+}
 
+void FlowNetwork::evaluate_jacobian(const Eigen::VectorXd& x, const Eigen::MatrixXd& s, Evaluation& out) const {
+  const int n = static_cast<int>(trial_nodes_.size());
+  const int nf = static_cast<int>(trial_fractures_.size());
   out.conductance = fluid_.density_derivative() * out.volume;
   for (int k = 0; k < nf; ++k) {
     out.conductance[fracture_node_a_[k]] += flow_dt() * out.eta[k];
@@ -260,6 +284,16 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
         jac.row(i) += fill_density(x[i], i) * half * out.slope[2 * k + end] * s.row(2 * k + end);
     }
   }
+  add_flow_jacobian(s, out);
+  for (int i = 0; i < n; ++i) jac.col(i) *= out.pressure_slope[i];
+  for (int i = 0; i < n; ++i) jac(i, i) += fill_density_slope(x[i], i) * out.volume[i];  // storage
+}
+
+void FlowNetwork::add_flow_jacobian(const Eigen::MatrixXd& s, Evaluation& out) const {
+  const int n = static_cast<int>(trial_nodes_.size());
+  const int nf = static_cast<int>(trial_fractures_.size());
+  const double drho = fluid_.density_derivative();
+  Eigen::MatrixXd& jac = out.jacobian;
   Eigen::RowVectorXd deta(n);
   for (int k = 0; k < nf; ++k) {
     const int a = fracture_node_a_[k], b = fracture_node_b_[k];
@@ -279,8 +313,6 @@ void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base
     jac(b, b) += flow_dt() * out.eta[k];
     jac(b, a) -= flow_dt() * out.eta[k];
   }
-  for (int i = 0; i < n; ++i) jac.col(i) *= out.pressure_slope[i];
-  for (int i = 0; i < n; ++i) jac(i, i) += fill_density_slope(x[i], i) * out.volume[i];  // storage
 }
 
 double FlowNetwork::fill_density(double y, int i) const {

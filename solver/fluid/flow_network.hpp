@@ -134,6 +134,15 @@ class FlowNetwork {
   void rebuild_trial_topology();
   void evaluate(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
                 Evaluation& out, bool with_jacobian) const;
+  /// Pieces of evaluate, in its order: pressure of the fill state, floored apertures,
+  /// storage and the node terms of the residual, flow between nodes, Jacobian.
+  void evaluate_pressure(const Eigen::VectorXd& unknowns, Evaluation& out) const;
+  void evaluate_aperture(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, Evaluation& out) const;
+  void evaluate_storage(const Eigen::VectorXd& unknowns, Evaluation& out) const;
+  void evaluate_flow(Evaluation& out) const;
+  void evaluate_jacobian(const Eigen::VectorXd& unknowns, const Eigen::MatrixXd& s, Evaluation& out) const;
+  /// Adds the derivatives of the flow between nodes to out.jacobian (in the pressures).
+  void add_flow_jacobian(const Eigen::MatrixXd& s, Evaluation& out) const;
   struct NewtonProgress {
     double residual = 0.0, change = 0.0, max_pressure = 0.0;  // of the last iteration
   };

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -254,23 +255,8 @@ void validate(const io::CaseConfig& config, const VariantSpec&) {
   if (!config.domain.inner) throw std::runtime_error("case needs an inner domain");
 }
 
-Metrics variant_metrics(const VariantRun& r) {
-  Metrics out;
-  nlohmann::json& m = out.json;
-  const std::string& name = r.variant->name;
-  m["blocks"] = r.model ? r.model->system->n_blocks() : 0;
-  m["joints"] = r.model ? static_cast<int>(r.model->system->mesh().joints.size()) : 0;
-  if (!r.model) {
-    if (name == "bimaterial") out.files["interface_bimaterial.csv"] = "x_m,v_upper_m,v_lower_m\n";
-    out.numbers["max_mass_balance_error"] = kNaN;
-    return out;
-  }
-  const simulation::Model& model = *r.model;
-  const Rect inner = *r.config->domain.inner;
-  const Vec2 origin = model.system->mesh().points[model.injection_points.at(0)];
-  const double initial_mass = model.flow->initial_mass();
-
-  // The committed state (the last completed step if the run stopped).
+/// The committed state of every mesh joint (the last completed step if the run stopped).
+std::vector<JointState> joint_states(const simulation::Model& model) {
   const dda::BlockSystem& s = *model.system;
   const mesh::Mesh& mesh = s.mesh();
   std::vector<JointState> joints;
@@ -289,22 +275,19 @@ Metrics variant_metrics(const VariantRun& r) {
     js.tensile_strength = mesh.joints[j].properties.tensile_strength_Pa;
     joints.push_back(js);
   }
-  const bool structured = r.variant->flag("structured");
-  const Pattern p = analyse(joints, origin, inner, structured);
-  const std::vector<Sample> samples = samples_of(r.record(), initial_mass);
-  const double leaked = model.flow->leaked_mass();
-  out.files["joints_" + name + ".csv"] = joints_csv(joints);
-  out.files["series_" + name + ".csv"] = series_csv(samples, initial_mass);
+  return joints;
+}
 
-  InterfaceFaces faces;
-  if (name == "bimaterial") {
-    faces = interface_faces(model, origin);
-    std::string text = "x_m,v_upper_m,v_lower_m\n";
-    for (const auto& row : faces.rows) text += number(row[0]) + "," + number(row[1]) + "," + number(row[2]) + "\n";
-    out.files["interface_bimaterial.csv"] = text;
-  }
+/// interface_bimaterial.csv: the displacement of the two faces along the interface.
+std::string interface_csv(const InterfaceFaces& faces) {
+  std::string text = "x_m,v_upper_m,v_lower_m\n";
+  for (const auto& row : faces.rows) text += number(row[0]) + "," + number(row[1]) + "," + number(row[2]) + "\n";
+  return text;
+}
 
-  out.numbers = {
+/// The named numbers the checks refer to: ledger errors, extents, branch lengths and symmetry.
+std::map<std::string, double> pattern_numbers(const Pattern& p, const std::vector<Sample>& samples, double leaked) {
+  return {
       {"max_mass_balance_error", max_abs(samples, &Sample::mass_balance_error)},
       {"max_ledger_error", max_abs(samples, &Sample::ledger)},
       {"left", p.left},
@@ -332,13 +315,19 @@ Metrics variant_metrics(const VariantRun& r) {
       {"unmatched_all", count(p.unmatched_mirror_x) + count(p.unmatched_mirror_y) + count(p.unmatched_swap)},
       {"leaked_kg", leaked},
   };
-  if (name == "bimaterial") out.numbers["opening_ratio"] = faces.mean_abs_v_lower / faces.mean_abs_v_upper;
+}
 
+/// result.json: the mass ledger and solver effort over the run.
+void ledger_json(nlohmann::json& m, const std::vector<Sample>& samples) {
   m["max_mass_balance_error"] = finite_or_null(max_abs(samples, &Sample::mass_balance_error));
   m["max_ledger_error"] = finite_or_null(max_abs(samples, &Sample::ledger));
   m["step_cuts_total"] = finite_or_null(sum(samples, &Sample::step_cuts));
   m["flow_newton_iterations_total"] = finite_or_null(sum(samples, &Sample::newton));
   m["max_step_wall_s"] = finite_or_null(max_abs(samples, &Sample::step_wall_s));
+}
+
+/// result.json: extents, lengths per orientation and quadrant, and symmetry of the wetted joints.
+void pattern_json(nlohmann::json& m, const Pattern& p, bool structured) {
   m["wetted_joints"] = p.wetted;
   m["extent_m"] = {{"left", p.left}, {"right", p.right}, {"down", p.down}, {"up", p.up}};
   m["wetted_length_m"] = {{"total", p.length_total},       {"horizontal", p.length_horizontal},
@@ -352,29 +341,78 @@ Metrics variant_metrics(const VariantRun& r) {
   if (structured)
     m["unmatched"] = {{"mirror_x", p.unmatched_mirror_x}, {"mirror_y", p.unmatched_mirror_y},
                       {"swap_xy", p.unmatched_swap}};
+}
+
+/// result.json: the state at the last recorded step.
+void at_end_json(nlohmann::json& m, const std::vector<Sample>& samples) {
+  if (samples.empty()) return;
+  const Sample& e = samples.back();
+  m["at_end"] = {{"time_s", e.time_s},
+                 {"injection_pressure_Pa", e.pressure},
+                 {"injection_aperture_m", e.aperture},
+                 {"open_extent_m", {e.xmin, e.xmax, e.ymin, e.ymax}},
+                 {"injected_kg", e.injected},
+                 {"stored_kg", e.stored},
+                 {"leaked_kg", e.leaked}};
+}
+
+/// result.json: the two faces of the interface (bi-material case).
+nlohmann::json interface_json(const InterfaceFaces& faces) {
+  return {{"wetted_joints", faces.joints},
+          {"mean_abs_v_upper_m", finite_or_null(faces.mean_abs_v_upper)},
+          {"mean_abs_v_lower_m", finite_or_null(faces.mean_abs_v_lower)},
+          {"mean_v_upper_m", finite_or_null(faces.mean_v_upper)},
+          {"mean_v_lower_m", finite_or_null(faces.mean_v_lower)}};
+}
+
+std::string summary_line(int blocks, const Pattern& p, const std::vector<Sample>& samples) {
+  char line[200];
+  std::snprintf(line, sizeof line, "blocks %4d  wetted %3d  x %+6.2f..%+6.2f  y %+6.2f..%+6.2f  mass %.1e", blocks,
+                p.wetted, -p.left, p.right, -p.down, p.up, max_abs(samples, &Sample::mass_balance_error));
+  return line;
+}
+
+Metrics variant_metrics(const VariantRun& r) {
+  Metrics out;
+  nlohmann::json& m = out.json;
+  const std::string& name = r.variant->name;
+  m["blocks"] = r.model ? r.model->system->n_blocks() : 0;
+  m["joints"] = r.model ? static_cast<int>(r.model->system->mesh().joints.size()) : 0;
+  if (!r.model) {
+    if (name == "bimaterial") out.files["interface_bimaterial.csv"] = "x_m,v_upper_m,v_lower_m\n";
+    out.numbers["max_mass_balance_error"] = kNaN;
+    return out;
+  }
+  const simulation::Model& model = *r.model;
+  const Rect inner = *r.config->domain.inner;
+  const Vec2 origin = model.system->mesh().points[model.injection_points.at(0)];
+  const double initial_mass = model.flow->initial_mass();
+
+  // The committed state (the last completed step if the run stopped).
+  const std::vector<JointState> joints = joint_states(model);
+  const bool structured = r.variant->flag("structured");
+  const Pattern p = analyse(joints, origin, inner, structured);
+  const std::vector<Sample> samples = samples_of(r.record(), initial_mass);
+  const double leaked = model.flow->leaked_mass();
+  out.files["joints_" + name + ".csv"] = joints_csv(joints);
+  out.files["series_" + name + ".csv"] = series_csv(samples, initial_mass);
+
+  InterfaceFaces faces;
+  if (name == "bimaterial") {
+    faces = interface_faces(model, origin);
+    out.files["interface_bimaterial.csv"] = interface_csv(faces);
+  }
+
+  out.numbers = pattern_numbers(p, samples, leaked);
+  if (name == "bimaterial") out.numbers["opening_ratio"] = faces.mean_abs_v_lower / faces.mean_abs_v_upper;
+
+  ledger_json(m, samples);
+  pattern_json(m, p, structured);
   m["leaked_kg"] = leaked;
   m["initial_mass_kg"] = initial_mass;
-  if (!samples.empty()) {
-    const Sample& e = samples.back();
-    m["at_end"] = {{"time_s", e.time_s},
-                   {"injection_pressure_Pa", e.pressure},
-                   {"injection_aperture_m", e.aperture},
-                   {"open_extent_m", {e.xmin, e.xmax, e.ymin, e.ymax}},
-                   {"injected_kg", e.injected},
-                   {"stored_kg", e.stored},
-                   {"leaked_kg", e.leaked}};
-  }
-  if (name == "bimaterial")
-    m["interface"] = {{"wetted_joints", faces.joints},
-                      {"mean_abs_v_upper_m", finite_or_null(faces.mean_abs_v_upper)},
-                      {"mean_abs_v_lower_m", finite_or_null(faces.mean_abs_v_lower)},
-                      {"mean_v_upper_m", finite_or_null(faces.mean_v_upper)},
-                      {"mean_v_lower_m", finite_or_null(faces.mean_v_lower)}};
-  char line[200];
-  std::snprintf(line, sizeof line, "blocks %4d  wetted %3d  x %+6.2f..%+6.2f  y %+6.2f..%+6.2f  mass %.1e",
-                s.n_blocks(), p.wetted, -p.left, p.right, -p.down, p.up,
-                max_abs(samples, &Sample::mass_balance_error));
-  out.summary = line;
+  at_end_json(m, samples);
+  if (name == "bimaterial") m["interface"] = interface_json(faces);
+  out.summary = summary_line(model.system->n_blocks(), p, samples);
   return out;
 }
 
