@@ -238,7 +238,7 @@ const Table<InjectionConfig>& injection_table() {
       "A fluid source at the mesh vertex nearest `at`; needs a `fluid` section.",
       {text({"name", "", "", "label used in outputs"}, &InjectionConfig::name),
        required(point({"at", "m", "§3.2: injection at the origin",
-                       "injection point (the nearest mesh vertex is used)"},
+                       "injection point: a mesh point (within 1e-6 of the domain size) on a joint of a `fluid_filled` fracture"},
                       &InjectionConfig::at, "inside domain.outer")),
        required(number({"mass_rate", "kg/s", "§3.2: Q0 = 4 kg/s; §3.4: 1 kg/s",
                         "injected mass per second and per metre of out-of-plane thickness"},
