@@ -130,11 +130,11 @@ Eigen::VectorXd CoupledStep::solve_contacts(StepStatistics& stats) {
 
 int CoupledStep::update_contact_states(const Eigen::VectorXd& d, StepStatistics& stats) {
   const dda::OpenCloseTrial trial = mechanics_.trial_contacts(d, stats);
-  const auto failures = fracture::failing_bonds(intact_bonds(trial), pressurised_points(), rules_);
+  const auto failures = fracture::failing_bonds(overloaded_bonds(trial), pressurised_points(), rules_);
   return mechanics_.apply_state_changes(d, merge_failures(trial.changes, failures), stats);
 }
 
-std::vector<fracture::Bond> CoupledStep::intact_bonds(const dda::OpenCloseTrial& trial) const {
+std::vector<fracture::Bond> CoupledStep::overloaded_bonds(const dda::OpenCloseTrial& trial) const {
   const auto& contacts = mechanics_.contacts();
   const auto& joints = mechanics_.mesh().joints;
   std::vector<fracture::Bond> bonds;
@@ -142,6 +142,7 @@ std::vector<fracture::Bond> CoupledStep::intact_bonds(const dda::OpenCloseTrial&
     const dda::Contact& c = contacts[ci];
     if (c.state != dda::ContactState::locked || !c.bonded) continue;
     const auto& joint = joints[c.joint];
+    if (!joint.properties.breakable) continue;  // can never fail: no candidate
     fracture::Bond b;
     b.contact = ci;
     b.point = c.point;
@@ -151,6 +152,9 @@ std::vector<fracture::Bond> CoupledStep::intact_bonds(const dda::OpenCloseTrial&
     b.shear_N = trial.tractions[ci].shear_N;
     b.strength = bond_strength_[c.joint];
     b.breakable = joint.properties.breakable;
+    // Only a bond over a limit is a candidate; the open-neighbour search (seed 2.3 i)
+    // is then made for those few, not for every intact bond of every iteration.
+    if (fracture::failure_mode(b, rules_.shear_failure_of_intact_joints) == fracture::FailureMode::none) continue;
     b.open_neighbour = rules_.failure_needs_open_neighbour_and_fluid && mechanics_.has_open_neighbour(ci);
     bonds.push_back(b);
   }

@@ -42,7 +42,8 @@ class CoupledStep {
   Eigen::VectorXd solve_contacts(StepStatistics& stats);
   /// Trial tractions, bond failures and contact state changes; returns the count applied.
   int update_contact_states(const Eigen::VectorXd& d, StepStatistics& stats);
-  std::vector<fracture::Bond> intact_bonds(const dda::OpenCloseTrial& trial) const;
+  /// Intact breakable bonds over their tensile or shear limit at the trial state.
+  std::vector<fracture::Bond> overloaded_bonds(const dda::OpenCloseTrial& trial) const;
   const std::vector<char>& pressurised_points();
 
   dda::BlockSystem& mechanics_;
