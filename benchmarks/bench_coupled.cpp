@@ -8,6 +8,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "dda/thread_policy.hpp"
+
 #include <string>
 
 #include "io/case_config.hpp"
@@ -82,4 +84,11 @@ void BM_CoupledSymmetricFree(benchmark::State& state) {
 
 BENCHMARK(BM_CoupledKgdDx05)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_CoupledSymmetricFree)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::AddCustomContext("hfdda_threads", hfdda::dda::apply_thread_policy(hfdda::dda::threads_from_environment()));
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

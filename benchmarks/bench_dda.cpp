@@ -8,6 +8,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "dda/thread_policy.hpp"
+
 #include <cmath>
 #include <memory>
 
@@ -118,6 +120,7 @@ BENCHMARK(BM_FactorizeK)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecon
 
 int main(int argc, char** argv) {
   benchmark::AddCustomContext("hfdda_build_type", HFDDA_BUILD_TYPE);
+  benchmark::AddCustomContext("hfdda_threads", hfdda::dda::apply_thread_policy(hfdda::dda::threads_from_environment()));
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -42,6 +42,10 @@ void BlockSystem::add_boundary_stress(int boundary_edge, const Eigen::Matrix2d& 
   loads_.boundary_stresses.push_back({boundary_edge, stress_Pa});
 }
 
+void BlockSystem::add_ramped_boundary_stress(int boundary_edge, const Eigen::Matrix2d& stress_per_Pa) {
+  loads_.ramped_boundary_stresses.push_back({boundary_edge, stress_per_Pa});
+}
+
 void BlockSystem::set_in_situ_stress(const Eigen::Matrix2d& sigma) {
   for (auto& st : blocks_.stress) st = Eigen::Vector3d(sigma(0, 0), sigma(1, 1), sigma(0, 1));
   // Each joint end carries the traction of its half joint (trapezoidal rule, exact for
@@ -99,13 +103,16 @@ void BlockSystem::add_attachment_loads() {
   for (const auto& pl : loads_.point_loads)
     step_loads_.segment<6>(6 * pl.block) +=
         displacement_matrix(pl.position, moments_[pl.block].centroid).transpose() * pl.force_N;
-  for (const auto& bs : loads_.boundary_stresses) {
+  auto add_traction = [&](const ExternalLoads::BoundaryStress& bs, double scale) {
     const auto& e = mesh_.boundary_edges[bs.boundary_edge];
     const Vec2 u = corner(e.block, e.corner), v = blocks_.next_corner(e.block, e.corner);
     // T is linear along the edge: the midpoint rule integrates T^T t exactly.
     const Mat26 t = displacement_matrix(0.5 * (u + v), moments_[e.block].centroid);
-    step_loads_.segment<6>(6 * e.block) += (v - u).norm() * t.transpose() * (bs.stress_Pa * outward_normal(u, v));
-  }
+    step_loads_.segment<6>(6 * e.block) +=
+        (v - u).norm() * t.transpose() * (scale * (bs.stress_Pa * outward_normal(u, v)));
+  };
+  for (const auto& bs : loads_.boundary_stresses) add_traction(bs, 1.0);
+  for (const auto& bs : loads_.ramped_boundary_stresses) add_traction(bs, loads_.ramp_level_Pa);
 }
 
 void BlockSystem::add_joint_pressure_load(int j, double pressure_p_Pa, double pressure_q_Pa,

@@ -23,6 +23,10 @@ struct ExternalLoads {
 
   std::vector<PointAttachment> fixed_points, point_loads;
   std::vector<BoundaryStress> boundary_stresses;
+  /// Ramped far-field tractions: stress per unit of the load level (dimensionless), scaled
+  /// by `ramp_level_Pa` (seed 4.2-4.4: stresses incremented until failure).
+  std::vector<BoundaryStress> ramped_boundary_stresses;
+  double ramp_level_Pa = 0.0;
   Vec2 body_force{0, 0};
 };
 

@@ -100,6 +100,12 @@ class BlockSystem {
   /// current outward normal (a follower load: self-equilibrated on any closed boundary,
   /// so a body held at one point does not rotate under it), integrated exactly.
   void add_boundary_stress(int boundary_edge, const Eigen::Matrix2d& stress_Pa);
+  /// A far-field stress pattern (per unit of the load level, dimensionless) on a boundary
+  /// edge, applied like add_boundary_stress scaled by the level of set_load_level().
+  void add_ramped_boundary_stress(int boundary_edge, const Eigen::Matrix2d& stress_per_Pa);
+  /// Load level of the ramped boundary stresses from the next step on [Pa].
+  void set_load_level(double level_Pa) { loads_.ramp_level_Pa = level_Pa; }
+  double load_level() const { return loads_.ramp_level_Pa; }
   /// In-situ stress: every block starts with `stress_Pa` and every closed joint contact
   /// with the matching traction (times its length) as its contact force, so that with
   /// the same stress on the whole outer boundary the system is in equilibrium at rest.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hfdda::fracture {
 
@@ -51,6 +52,24 @@ std::vector<BondFailure> failing_bonds(const std::vector<Bond>& bonds, const std
   for (int i : most_stressed(tension_stress, rules.tie_tolerance))
     failures.push_back({tension_contact[i], FailureMode::tension, 0.0});
   return failures;
+}
+
+}  // namespace hfdda::fracture
+
+namespace hfdda::fracture {
+
+double failure_margin_N(const Bond& b, bool shear_failure_of_intact_joints) {
+  const double tension = b.strength.tensile_strength_Pa * b.length_m - b.normal_N;
+  if (!shear_failure_of_intact_joints) return tension;
+  const double shear = b.strength.cohesion_Pa * b.length_m + std::max(-b.normal_N, 0.0) * b.strength.tan_friction -
+                       std::abs(b.shear_N);
+  return std::min(tension, shear);
+}
+
+double level_at_zero_margin(double level_a, double margin_a, double level_b, double margin_b) {
+  const double slope = (margin_b - margin_a) / (level_b - level_a);
+  if (!(slope < 0.0)) return std::numeric_limits<double>::infinity();
+  return level_b - margin_b / slope;
 }
 
 }  // namespace hfdda::fracture

@@ -76,3 +76,17 @@ std::vector<BondFailure> failing_bonds(const std::vector<Bond>& bonds, const std
                                        const FractureRules& rules);
 
 }  // namespace hfdda::fracture
+
+namespace hfdda::fracture {
+
+/// How far an intact bond is from the limits of failure_mode() [N per m thickness]: the
+/// smaller of T0 Lc - N and, if shear failure of intact joints is on,
+/// C0 Lc + max(-N, 0) tan phi - |S|. Positive below both limits.
+double failure_margin_N(const Bond& bond, bool shear_failure_of_intact_joints);
+
+/// The load level at which a margin that is linear in the level reaches zero, from its
+/// values at two distinct levels; +infinity if the margin does not decrease with the level.
+/// (Before the first failure a static DDA system is linear in its loads, seed 4.2.)
+double level_at_zero_margin(double level_a, double margin_a, double level_b, double margin_b);
+
+}  // namespace hfdda::fracture

@@ -4,6 +4,7 @@
 #include "io/case_checks.hpp"
 
 #include "io/breakable_patterns.hpp"
+#include "io/load_ramp_keys.hpp"
 
 namespace hfdda::io {
 
@@ -169,7 +170,12 @@ const std::vector<CrossCheck>& cross_checks() {
        check_pattern_mesh},
       {"The region and origin of every breakable pattern lie in `domain.outer` (its boundary "
        "included); its region holds at least one of its lines and at most 100000.",
-       check_pattern_regions}};
+       check_pattern_regions},
+      {"`load_ramp`: levels as `start`/`increment`/`maximum` or as `history`, not both; a "
+       "non-zero stress pattern; `stop_joints` exactly with `stop_when: broken_fraction`, each "
+       "naming a fracture or breakable pattern; no `fluid` section, no fracture `pressure` and no "
+       "`time.end_time` with it.",
+       check_load_ramp}};
   return checks;
 }
 

@@ -135,6 +135,33 @@ struct FarFieldConfig {
   bool in_situ = false;
 };
 
+/// Quasi-static load ramp (seed 4.2-4.4): far-field tractions t = s (sigma_unit . n) on
+/// the listed sides, with the magnitude s raised level by level, one static step per
+/// level, the failure rules of seed 2.3 applied at every level. Levels are either a
+/// uniform ramp (start, increment, maximum) or a piecewise-linear history s(t) sampled
+/// every time.dt. The run ends at the stop condition or the last level.
+struct LoadRampConfig {
+  /// Far-field stress per unit of the ramped magnitude s (dimensionless, tension positive).
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  std::vector<std::string> sides{"top", "bottom"};  ///< subset of left/right/bottom/top
+  std::optional<double> start_Pa;      ///< s of the first level (uniform ramp; default 0)
+  std::optional<double> increment_Pa;  ///< s between levels (uniform ramp)
+  std::optional<double> maximum_Pa;    ///< largest s (uniform ramp)
+  std::vector<Vec2> history;           ///< (t [s], s [Pa]) points, t increasing (instead of the ramp)
+  /// Uniform ramp: predict the first failure from the linear response of two levels and
+  /// jump to just below it, instead of climbing there level by level.
+  bool find_first_failure = true;
+  /// "none", "broken_fraction" (the broken length of `stop_joints` exceeds
+  /// `stop_fraction` of their length) or "failed_both_sides" (a joint away from the
+  /// crack has failed on both sides of `crack_centre` along `crack_direction`).
+  std::string stop_when = "none";
+  std::vector<std::string> stop_joints;  ///< names of fractures or breakable patterns
+  double stop_fraction = 0.75;
+  Vec2 crack_centre{0, 0};
+  Vec2 crack_direction{1, 0};
+  int line = 0;
+};
+
 struct PointLoadConfig {
   Vec2 at{0, 0};
   Vec2 force_N_per_m{0, 0};  ///< per metre of out-of-plane thickness
@@ -196,6 +223,7 @@ struct CaseConfig {
   std::vector<FractureConfig> fractures;
   std::vector<BreakablePatternConfig> breakable_patterns;
   FarFieldConfig far_field;
+  std::optional<LoadRampConfig> load_ramp;  ///< absent: loads constant, time stepping to end_time
   std::vector<PointLoadConfig> point_loads;
   Vec2 body_force_N_m3{0, 0};
   std::vector<FixedPointConfig> fixed_points;

@@ -8,6 +8,7 @@
 
 #include "io/breakable_patterns.hpp"
 #include "io/case_fields.hpp"
+#include "io/load_ramp_keys.hpp"
 
 namespace hfdda::io {
 
@@ -416,6 +417,7 @@ const Table<CaseConfig>& case_table() {
        breakable_patterns_key(),
        section({"far_field", "", "§3.1: background stress", "far-field stress"},
                &CaseConfig::far_field, &far_field_table),
+       load_ramp_key(),
        map_list({"point_loads", "", "", "concentrated forces"}, &CaseConfig::point_loads,
                 &point_load_table, 0, "none"),
        point({"body_force", "N/m^3", "", "body force per unit volume, e.g. [0, -rho g]"},

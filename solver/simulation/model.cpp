@@ -225,6 +225,7 @@ fracture::FractureRules fracture_rules(const io::CaseConfig& c) {
   fracture::FractureRules r;
   r.tie_tolerance = c.numerics.tie_tolerance;
   r.shear_failure_of_intact_joints = c.numerics.shear_failure_of_intact_joints;
+  r.failure_needs_open_neighbour_and_fluid = !c.load_ramp.has_value();
   return r;
 }
 
@@ -255,6 +256,16 @@ Model build_model(const io::CaseConfig& c) {
       for (const std::string& side : sides)
         if (edge_on_side(m, m.boundary_edges[e], c.domain.outer, side, tol)) system.add_boundary_stress(e, far_field);
     if (c.far_field.in_situ) system.set_in_situ_stress(far_field);
+  }
+  if (c.load_ramp) {
+    const io::LoadRampConfig& ramp = *c.load_ramp;
+    Eigen::Matrix2d pattern;
+    pattern << ramp.sxx, ramp.sxy, ramp.sxy, ramp.syy;
+    const double tol = 1e-9 * domain_size(c);
+    for (int e = 0; e < static_cast<int>(m.boundary_edges.size()); ++e)
+      for (const std::string& side : ramp.sides)
+        if (edge_on_side(m, m.boundary_edges[e], c.domain.outer, side, tol)) system.add_ramped_boundary_stress(e, pattern);
+    model.ramp = std::make_unique<LoadRamp>(c, system, model.fracture_of_joint, c.numerics.shear_failure_of_intact_joints);
   }
 
   // Prescribed fluid pressure: on both faces of the fracture's joints and at their points.

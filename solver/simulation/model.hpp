@@ -16,6 +16,7 @@
 #include "fluid/flow_network.hpp"
 #include "io/case_config.hpp"
 #include "mesh/mesh.hpp"
+#include "simulation/load_ramp.hpp"
 
 namespace hfdda::simulation {
 
@@ -33,6 +34,8 @@ struct Model {
   std::vector<int> probe_points;      ///< mesh point of each config.probes item
   /// The time step of the case (blocks, fluid models, bond failures) with cut-back.
   std::unique_ptr<coupling::CoupledStep> step;
+  /// The load levels of a case with a `load_ramp` (null otherwise: time stepping to end_time).
+  std::unique_ptr<LoadRamp> ramp;
 };
 
 /// Builds the mesh and the block system of a case. Throws InputError.
@@ -45,7 +48,8 @@ mesh::Mesh build_case_mesh(const io::CaseConfig& config);
 /// Young's modulus of its materials (seed Table 3.1: k = 100 E).
 dda::MechanicsSettings mechanics_settings(const io::CaseConfig& config);
 
-/// The failure rules of seed 2.3 a case sets (numerics section).
+/// The failure rules of seed 2.3 a case sets (numerics section). Rule (i), failure only
+/// at an open joint next to fluid, is off in a load ramp: it has no fluid (seed 4.2-4.4).
 fracture::FractureRules fracture_rules(const io::CaseConfig& config);
 
 }  // namespace hfdda::simulation

@@ -73,6 +73,23 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
     const double v = f.value(r.totals);
     solver[f.name] = f.integer ? nlohmann::json(static_cast<long long>(v)) : nlohmann::json(v);
   }
+  if (model.ramp) {
+    const LoadRampOutcome& o = model.ramp->outcome();
+    auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    j["load_ramp"] = {{"levels_solved", o.levels_solved},
+                      {"last_level_Pa", number(o.last_level_Pa)},
+                      {"predicted_first_failure_Pa", number(o.predicted_first_failure_Pa)},
+                      {"jumped_to_Pa", number(o.jumped_to_Pa)},
+                      {"first_failure_Pa", number(o.first_failure_Pa)},
+                      {"first_failure_step", o.first_failure_step},
+                      {"first_failure_at_jump", o.first_failure_at_jump},
+                      {"first_joint_failure_Pa", number(o.first_joint_failure_Pa)},
+                      {"stop_when", model.config.load_ramp->stop_when},
+                      {"stop_reached", o.stop_reached},
+                      {"stop_Pa", number(o.stop_Pa)},
+                      {"stop_step", o.stop_step},
+                      {"broken_fraction", o.broken_fraction}};
+  }
   io::write_file_atomically(options.output_dir + "/summary.json", j.dump(2) + "\n");
 }
 
@@ -89,19 +106,27 @@ RunResult run(Model& model, const RunOptions& options) {
 
   RunResult result;
   result.record = RunRecord(names);
+  // Time stepping to end_time, or one step per load level of a load ramp.
+  LoadRamp* ramp = model.ramp.get();
   const int n_steps = std::max(1, static_cast<int>(std::llround(time.end_time_s / time.dt_s)));
   outputs.write(model, 0, 0.0, false);
-  for (int step = 1; step <= n_steps; ++step) {
+  for (int step = 1; ramp ? ramp->has_next() : step <= n_steps; ++step) {
     const double t = step * time.dt_s;
+    if (ramp) model.system->set_load_level(ramp->next_level());
     StepStatistics st;
     try {
       st = model.step->advance(time.dt_s, model.config.numerics.max_step_cuts);
     } catch (const ConvergenceError& e) {
-      char where[96];
-      std::snprintf(where, sizeof where, "step %d (t = %g s to %g s): ", step, t - time.dt_s, t);
+      char where[128];
+      if (ramp)
+        std::snprintf(where, sizeof where, "step %d (load level %g Pa): ", step, model.system->load_level());
+      else
+        std::snprintf(where, sizeof where, "step %d (t = %g s to %g s): ", step, t - time.dt_s, t);
       result.message = where + std::string(e.what());
       break;
     }
+    if (ramp) ramp->after_step(*model.system, step, st.bonds_broken);
+    const bool last = ramp ? !ramp->has_next() : step == n_steps;
     result.steps = step;
     result.totals.accumulate(st);
     result.time_s = t;
@@ -113,12 +138,13 @@ RunResult run(Model& model, const RunOptions& options) {
     history.append(row);
     result.record.append(std::move(row));
     const int every = model.config.output.every_steps;
-    if (step == n_steps || (every > 0 && step % every == 0)) outputs.write(model, step, t, step == n_steps);
+    if (last || (every > 0 && step % every == 0)) outputs.write(model, step, t, last);
+    const int shown_steps = ramp ? step : n_steps;
     if (terminal)
-      std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  open-close %d  ALM %d  elapsed %.1f s   ", step, n_steps, t,
+      std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  open-close %d  ALM %d  elapsed %.1f s   ", step, shown_steps, t,
                    st.open_close_iterations, st.alm_iterations, elapsed);
     else if (!options.quiet)
-      std::fprintf(stderr, "step %d/%d t=%.6g s open-close=%d alm=%d elapsed=%.3f s\n", step, n_steps, t,
+      std::fprintf(stderr, "step %d/%d t=%.6g s open-close=%d alm=%d elapsed=%.3f s\n", step, shown_steps, t,
                    st.open_close_iterations, st.alm_iterations, elapsed);
   }
   if (terminal) std::fprintf(stderr, "\n");

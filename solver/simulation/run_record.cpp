@@ -144,8 +144,19 @@ std::vector<OutputColumn> probe_columns(const std::string& name, std::size_t ind
            }}};
 }
 
+std::vector<OutputColumn> load_ramp_columns() {
+  return {{"load_level_Pa", "Pa", "load level s of the load ramp in the step (load_ramp cases only)",
+           [](const StepContext& c) { return c.model.system->load_level(); }},
+          {"broken_fraction", "-",
+           "broken length of the load ramp's stop_joints over their length (load_ramp cases with stop_when: "
+           "broken_fraction only)",
+           [](const StepContext& c) { return c.model.ramp ? c.model.ramp->broken_fraction() : 0.0; }}};
+}
+
 std::vector<OutputColumn> history_columns(const Model& model) {
   std::vector<OutputColumn> columns = fixed_history_columns();
+  if (model.ramp)
+    for (OutputColumn& c : load_ramp_columns()) columns.push_back(std::move(c));
   for (std::size_t i = 0; i < model.config.probes.size(); ++i)
     for (OutputColumn& c : probe_columns(model.config.probes[i].name, i)) columns.push_back(std::move(c));
   return columns;
@@ -155,6 +166,7 @@ std::string history_columns_markdown() {
   std::string text = "| column | unit | meaning |\n|---|---|---|\n";
   std::vector<OutputColumn> columns = fixed_history_columns();
   for (OutputColumn& c : probe_columns("<name>", 0)) columns.push_back(std::move(c));
+  for (OutputColumn& c : load_ramp_columns()) columns.push_back(std::move(c));
   for (const OutputColumn& c : columns)
     text += "| `" + c.name + "` | " + c.unit + " | " + escape_cell(c.description) + " |\n";
   return text;

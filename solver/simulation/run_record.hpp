@@ -54,6 +54,10 @@ const std::vector<OutputColumn>& fixed_history_columns();
 /// `index` is the probe's position in the case's probe list.
 std::vector<OutputColumn> probe_columns(const std::string& name, std::size_t index);
 
+/// The columns of a case with a load ramp: its load level and the broken fraction of its
+/// stop joints.
+std::vector<OutputColumn> load_ramp_columns();
+
 /// Every column of a case, in history.csv order: the fixed ones, then two per probe.
 std::vector<OutputColumn> history_columns(const Model& model);
 

@@ -1,5 +1,7 @@
 #include "harness.hpp"
 
+#include "dda/thread_policy.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -427,6 +429,7 @@ int run_harness(int argc, char** argv, const CaseDefinition& def) {
   const std::string &tier = options->tier, &out_dir = options->out_dir;
   try {
     if (!def.metrics) throw std::runtime_error("the case defines no metrics function");
+    std::fprintf(stderr, "%s\n", dda::apply_thread_policy(dda::threads_from_environment()).c_str());
     const Study study = load_study(options->case_dir + "/study.yaml");
     fs::create_directories(out_dir);
 

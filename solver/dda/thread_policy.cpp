@@ -1,0 +1,38 @@
+#include "dda/thread_policy.hpp"
+
+#include <dlfcn.h>
+#include <omp.h>
+
+#include <cstdlib>
+#include <stdexcept>
+
+namespace hfdda::dda {
+
+int threads_from_environment() {
+  const char* text = std::getenv("HFDDA_THREADS");
+  if (text == nullptr || *text == '\0') return 1;
+  char* end = nullptr;
+  const long value = std::strtol(text, &end, 10);
+  if (*end != '\0' || value < 1 || value > 1024)
+    throw std::invalid_argument(std::string("HFDDA_THREADS must be a whole number from 1 to 1024 (got '") + text + "')");
+  return static_cast<int>(value);
+}
+
+std::string apply_thread_policy(int threads) {
+  if (threads < 1) throw std::invalid_argument("the number of threads must be >= 1");
+  // A parallel region runs with one thread once the active-level limit is reached; with
+  // a limit of 0 that is every region, including those with a num_threads clause.
+  omp_set_max_active_levels(threads > 1 ? 1 : 0);
+  omp_set_num_threads(threads);
+  // OpenBLAS, when it is the BLAS CHOLMOD was linked with (looked up, not linked: any
+  // other BLAS is single-threaded or has its own setting).
+  using SetThreads = void (*)(int);
+  std::string blas = "no OpenBLAS";
+  if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) {
+    set(threads);
+    blas = "OpenBLAS " + std::to_string(threads);
+  }
+  return "threads: " + std::to_string(threads) + " (CHOLMOD OpenMP " + std::to_string(threads) + ", " + blas + ")";
+}
+
+}  // namespace hfdda::dda

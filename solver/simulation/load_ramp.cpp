@@ -1,0 +1,171 @@
+#include "simulation/load_ramp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "fracture/fracture_criteria.hpp"
+
+namespace hfdda::simulation {
+
+namespace {
+
+/// s(t) of a piecewise-linear history, constant beyond its ends.
+double history_level(const std::vector<Vec2>& history, double t) {
+  if (t <= history.front().x()) return history.front().y();
+  for (std::size_t i = 1; i < history.size(); ++i)
+    if (t <= history[i].x()) {
+      const double w = (t - history[i - 1].x()) / (history[i].x() - history[i - 1].x());
+      return (1.0 - w) * history[i - 1].y() + w * history[i].y();
+    }
+  return history.back().y();
+}
+
+/// A fracture belongs to a stop name if it is named so, or is a line of the breakable
+/// pattern of that name (`<name>.<family>`).
+bool belongs_to(const std::string& fracture_name, const std::vector<std::string>& names) {
+  for (const std::string& n : names)
+    if (fracture_name == n || fracture_name.starts_with(n + ".")) return true;
+  return false;
+}
+
+}  // namespace
+
+LoadRamp::LoadRamp(const io::CaseConfig& config, const dda::BlockSystem& system,
+                   const std::vector<int>& fracture_of_joint, bool shear_failure_of_intact_joints)
+    : config_(*config.load_ramp),
+      dt_s_(config.time.dt_s),
+      shear_failure_(shear_failure_of_intact_joints),
+      uniform_(config.load_ramp->history.empty()) {
+  if (uniform_) {
+    const double start = config_.start_Pa.value_or(0.0);
+    // The tolerance keeps a maximum that is a whole number of increments from start.
+    n_levels_ = static_cast<long long>(std::floor((*config_.maximum_Pa - start) / *config_.increment_Pa + 1e-9)) + 1;
+  } else {
+    n_levels_ = static_cast<long long>(std::floor(config_.history.back().x() / dt_s_ + 1e-9));
+  }
+  const auto& joints = system.mesh().joints;
+  const auto& contacts = system.contacts();
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const auto ends = system.joint_contacts(static_cast<int>(j));
+    if (joints[j].properties.breakable)
+      for (int ci : ends)
+        if (contacts[ci].bonded) bond_contacts_.push_back(ci);
+    const int f = fracture_of_joint[j];
+    if (config_.stop_when == "broken_fraction" && f >= 0 && belongs_to(config.fractures[f].name, config_.stop_joints))
+      for (int ci : ends) {
+        stop_contacts_.push_back(ci);
+        stop_length_m_ += contacts[ci].length_m;
+      }
+    if (joints[j].properties.breakable && !joints[j].properties.initially_open)
+      intact_joints_.push_back(static_cast<int>(j));
+  }
+}
+
+bool LoadRamp::has_next() const { return !outcome_.stop_reached && next_index_ < n_levels_; }
+
+double LoadRamp::next_level() {
+  const long long k = next_index_++;
+  current_level_ = uniform_ ? config_.start_Pa.value_or(0.0) + static_cast<double>(k) * *config_.increment_Pa
+                            : history_level(config_.history, static_cast<double>(k + 1) * dt_s_);
+  return current_level_;
+}
+
+std::vector<double> LoadRamp::margins(const dda::BlockSystem& system) const {
+  const auto& contacts = system.contacts();
+  const auto& joints = system.mesh().joints;
+  std::vector<double> m;
+  m.reserve(bond_contacts_.size());
+  for (int ci : bond_contacts_) {
+    fracture::Bond b;
+    b.length_m = contacts[ci].length_m;
+    std::tie(b.normal_N, b.shear_N) = system.contact_forces(ci);
+    b.strength = fracture::bond_strength(joints[contacts[ci].joint].properties);
+    m.push_back(fracture::failure_margin_N(b, shear_failure_));
+  }
+  return m;
+}
+
+void LoadRamp::try_jump(const dda::BlockSystem& system) {
+  std::vector<double> now = margins(system);
+  if (!have_margins_ || current_level_ == margins_level_) {
+    bond_margins_ = std::move(now);
+    margins_level_ = current_level_;
+    have_margins_ = true;
+    return;
+  }
+  double predicted = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < now.size(); ++i)
+    predicted = std::min(predicted, fracture::level_at_zero_margin(margins_level_, bond_margins_[i], current_level_, now[i]));
+  have_margins_ = false;  // one prediction per run: the first two levels
+  if (!std::isfinite(predicted)) return;
+  outcome_.predicted_first_failure_Pa = predicted;
+  const double increment = *config_.increment_Pa;
+  const double target = predicted - std::max(2.0 * increment, 0.01 * std::abs(predicted));
+  const double k = std::floor((target - config_.start_Pa.value_or(0.0)) / increment);
+  if (k > static_cast<double>(next_index_) && k < static_cast<double>(n_levels_)) {
+    next_index_ = static_cast<long long>(k);
+    jumped_this_step_ = true;  // the next step is the jump
+  }
+}
+
+bool LoadRamp::stop_condition_met(const dda::BlockSystem& system) {
+  const auto& contacts = system.contacts();
+  if (config_.stop_when == "broken_fraction") {
+    double broken = 0.0;
+    for (int ci : stop_contacts_)
+      if (!contacts[ci].bonded) broken += contacts[ci].length_m;
+    outcome_.broken_fraction = stop_length_m_ > 0.0 ? broken / stop_length_m_ : 0.0;
+    return outcome_.broken_fraction > config_.stop_fraction;
+  }
+  if (config_.stop_when == "failed_both_sides") {
+    const Vec2 direction = config_.crack_direction.normalized();
+    const auto& mesh = system.mesh();
+    bool before = false, after = false;
+    for (int j : intact_joints_) {
+      const auto ends = system.joint_contacts(j);
+      if (contacts[ends[0]].bonded || contacts[ends[1]].bonded) continue;
+      const Vec2 mid = 0.5 * (mesh.points[mesh.joints[j].point_p] + mesh.points[mesh.joints[j].point_q]);
+      const double s = (mid - config_.crack_centre).dot(direction);
+      before = before || s < 0.0;
+      after = after || s > 0.0;
+    }
+    return before && after;
+  }
+  return false;
+}
+
+void LoadRamp::after_step(const dda::BlockSystem& system, int step, int bonds_broken_in_step) {
+  const bool was_jump = jumped_this_step_;
+  jumped_this_step_ = false;
+  ++outcome_.levels_solved;
+  outcome_.last_level_Pa = current_level_;
+  if (was_jump) outcome_.jumped_to_Pa = current_level_;
+  if (bonds_broken_in_step > 0 && std::isnan(outcome_.first_failure_Pa)) {
+    outcome_.first_failure_Pa = current_level_;
+    outcome_.first_failure_step = step;
+    outcome_.first_failure_at_jump = was_jump;
+    have_margins_ = false;
+  }
+  if (std::isnan(outcome_.first_joint_failure_Pa) && bonds_broken_in_step > 0) {
+    const auto& contacts = system.contacts();
+    for (int j : intact_joints_) {
+      const auto ends = system.joint_contacts(j);
+      if (!contacts[ends[0]].bonded && !contacts[ends[1]].bonded) {
+        outcome_.first_joint_failure_Pa = current_level_;
+        break;
+      }
+    }
+  }
+  if (stop_condition_met(system)) {
+    outcome_.stop_reached = true;
+    outcome_.stop_Pa = current_level_;
+    outcome_.stop_step = step;
+    return;
+  }
+  const bool may_jump = uniform_ && config_.find_first_failure && std::isnan(outcome_.first_failure_Pa) &&
+                        std::isnan(outcome_.predicted_first_failure_Pa);
+  if (may_jump) try_jump(system);
+}
+
+}  // namespace hfdda::simulation

@@ -1,0 +1,81 @@
+#pragma once
+// The quasi-static load ramp of a case (io::LoadRampConfig; seed 4.2-4.4): which load
+// level each step applies, the skip to just below the first failure, the stop
+// condition, and what the run records about them.
+//
+// Before any bond fails, a static DDA system is linear in its loads (the joints are
+// bonded, open crack faces stay open): the margin of every intact bond to its limit
+// (fracture::failure_margin_N) is then linear in the level, so two levels predict the
+// first failure. The ramp goes on from 2 increments (or 1 %, the larger) below the
+// prediction; every level from there on is solved, so the recorded first-failure level
+// has the resolution of one increment, as in the seed. If a bond fails at the level
+// reached by the jump itself, the prediction was not safe and the outcome says so.
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "dda/block_system.hpp"
+#include "io/case_config.hpp"
+
+namespace hfdda::simulation {
+
+struct LoadRampOutcome {
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  int levels_solved = 0;
+  double last_level_Pa = kNone;
+  double predicted_first_failure_Pa = kNone;  ///< linear prediction (NaN: none made)
+  double jumped_to_Pa = kNone;                ///< level the ramp jumped to (NaN: no jump)
+  double first_failure_Pa = kNone;            ///< level of the first bond failure (NaN: none)
+  int first_failure_step = 0;
+  /// Level at which a whole joint (both ends) not initially open first failed (NaN: none);
+  /// the seed's "initiation" of a crack whose tip half-joint may have failed earlier.
+  double first_joint_failure_Pa = kNone;
+  bool first_failure_at_jump = false;  ///< it failed at the jumped-to level: resolution not guaranteed
+  bool stop_reached = false;
+  double stop_Pa = kNone;              ///< level at which the stop condition was met
+  int stop_step = 0;
+  double broken_fraction = 0.0;        ///< broken_fraction stop: its value after the last step
+};
+
+class LoadRamp {
+ public:
+  /// `fracture_of_joint`: index into config.fractures per joint (-1: none).
+  LoadRamp(const io::CaseConfig& config, const dda::BlockSystem& system, const std::vector<int>& fracture_of_joint,
+           bool shear_failure_of_intact_joints);
+
+  /// True while there is a level to solve and the stop condition is not met.
+  bool has_next() const;
+  /// The level of the next step [Pa] (advances the ramp).
+  double next_level();
+  /// After the step at the level last returned: first failure, stop condition, jump.
+  void after_step(const dda::BlockSystem& system, int step, int bonds_broken_in_step);
+
+  const LoadRampOutcome& outcome() const { return outcome_; }
+  /// Broken fraction of the stop joints now (0 without a broken_fraction stop).
+  double broken_fraction() const { return outcome_.broken_fraction; }
+
+ private:
+  std::vector<double> margins(const dda::BlockSystem& system) const;
+  void try_jump(const dda::BlockSystem& system);
+  bool stop_condition_met(const dda::BlockSystem& system);
+
+  io::LoadRampConfig config_;
+  double dt_s_;
+  bool shear_failure_;
+  bool uniform_;
+  long long n_levels_ = 0;   // uniform: levels start + k increment, k < n_levels_; history: steps
+  long long next_index_ = 0;
+  double current_level_ = 0.0;
+  bool jumped_this_step_ = false;
+  std::vector<int> bond_contacts_;       // intact breakable bonds at the start
+  std::vector<double> bond_margins_;     // their margins at the last level (no failure yet)
+  double margins_level_ = 0.0;
+  bool have_margins_ = false;
+  std::vector<int> stop_contacts_;       // contacts of the stop joints
+  double stop_length_m_ = 0.0;
+  std::vector<int> intact_joints_;       // breakable joints not initially open
+  LoadRampOutcome outcome_;
+};
+
+}  // namespace hfdda::simulation
