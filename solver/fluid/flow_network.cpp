@@ -51,17 +51,19 @@ void FlowNetwork::add_injection(const Injection& injection) {
   injections_.push_back(injection);
 }
 
-void FlowNetwork::fill_initially(int f, double width_m) {
+void FlowNetwork::fill_initially(int f, double width_m, double pressure_Pa) {
+  if (!(pressure_Pa >= 0.0)) throw std::invalid_argument("FlowNetwork::fill_initially: negative pressure");
   const double w = std::max(width_m, settings_.min_width_main_m);
   wetted_[f] = 1;
   arrival_time_[f] = time_s_;
   aperture_[2 * f] = aperture_[2 * f + 1] = w;
-  const double mass_per_end = fluid_.density(0.0) * 0.5 * fractures_[f].length_m * w;
+  const double mass_per_end = fluid_.density(pressure_Pa) * 0.5 * fractures_[f].length_m * w;
   point_mass_[fractures_[f].point_p] += mass_per_end;
   point_mass_[fractures_[f].point_q] += mass_per_end;
   for (int point : {fractures_[f].point_p, fractures_[f].point_q}) {
     reached_[point] = 1;
-    point_state_[point] = 0.0;  // full at zero pressure
+    point_state_[point] = pressure_Pa;  // full at that pressure
+    point_pressure_[point] = pressure_Pa;
   }
   initial_mass_ += 2.0 * mass_per_end;
   trial_wetted_ = wetted_;

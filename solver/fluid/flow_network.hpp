@@ -88,8 +88,9 @@ class FlowNetwork {
 
   void add_injection(const Injection& injection);
   /// Before the first step: the fracture starts wetted, open by `width_m` (at least
-  /// the minimum width) and full of fluid at zero pressure.
-  void fill_initially(int fracture, double width_m);
+  /// the minimum width) and full of fluid at `pressure_Pa` (>= 0; mass rho(p) L w).
+  /// A point shared by fractures filled at different pressures takes the last one.
+  void fill_initially(int fracture, double width_m, double pressure_Pa = 0.0);
 
   // --- one step: begin, then any number of (wet, solve), then commit ----------------
   void begin_step(double dt_s);

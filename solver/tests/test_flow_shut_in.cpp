@@ -104,6 +104,30 @@ TEST(FlowShutIn, VanishingRateBehavesAsShutIn) {
   }
 }
 
+TEST(FlowShutIn, FractureFilledUnderPressureKeepsMassAndPressure) {
+  // seed 3.3: a 1 mm notch filled at 0.08 % compression by mass, p = 0.0008 K_f. Rigid
+  // walls, nothing injected: mass and pressure stay.
+  fluid::FluidProperties fluid;
+  fluid.density_kg_m3 = 977.0;
+  fluid.bulk_modulus_Pa = 1.725e9;
+  fluid.viscosity_Pa_s = 97.7;
+  const double p0 = 0.0008 * fluid.bulk_modulus_Pa;
+  fluid::FlowNetwork net(3, {{0, 1, 0.015}, {1, 2, 0.015}}, fluid, {});
+  net.fill_initially(0, 1e-3, p0);
+  net.fill_initially(1, 1e-3, p0);
+  const double m0 = 1.0008 * 977.0 * 0.03 * 1e-3;
+  EXPECT_NEAR(net.stored_mass(), m0, 1e-15 * m0);
+  EXPECT_EQ(net.pressure(1), p0);
+  for (int step = 0; step < 3; ++step) {
+    net.begin_step(1.0);
+    net.solve(Eigen::VectorXd::Constant(4, 1e-3), Eigen::MatrixXd::Zero(4, 3));
+    net.commit();
+  }
+  EXPECT_NEAR(net.stored_mass(), m0, 1e-14 * m0);
+  for (int point = 0; point < 3; ++point) EXPECT_NEAR(net.pressure(point), p0, 1e-6 * p0);
+  EXPECT_LT(net.mass_balance_error(), 1e-14);
+}
+
 TEST(FlowShutIn, StoredMassNeverGoesNegative) {
   // Rigid 1 um walls and a leak-off that would drain 20,000 times the fluid present in
   // one step: the solve must fail (and the step be cut) rather than store negative mass.
