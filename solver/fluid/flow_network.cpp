@@ -51,17 +51,19 @@ void FlowNetwork::add_injection(const Injection& injection) {
   injections_.push_back(injection);
 }
 
-void FlowNetwork::fill_initially(int f, double width_m) {
+void FlowNetwork::fill_initially(int f, double width_m, double pressure_Pa) {
+  if (!(pressure_Pa >= 0.0)) throw std::invalid_argument("FlowNetwork::fill_initially: negative pressure");
   const double w = std::max(width_m, settings_.min_width_main_m);
   wetted_[f] = 1;
   arrival_time_[f] = time_s_;
   aperture_[2 * f] = aperture_[2 * f + 1] = w;
-  const double mass_per_end = fluid_.density(0.0) * 0.5 * fractures_[f].length_m * w;
+  const double mass_per_end = fluid_.density(pressure_Pa) * 0.5 * fractures_[f].length_m * w;
   point_mass_[fractures_[f].point_p] += mass_per_end;
   point_mass_[fractures_[f].point_q] += mass_per_end;
   for (int point : {fractures_[f].point_p, fractures_[f].point_q}) {
     reached_[point] = 1;
-    point_state_[point] = 0.0;  // full at zero pressure
+    point_state_[point] = pressure_Pa;  // full at that pressure
+    point_pressure_[point] = pressure_Pa;
   }
   initial_mass_ += 2.0 * mass_per_end;
   trial_wetted_ = wetted_;
@@ -438,84 +440,6 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
   return false;
 }
 
-bool FlowNetwork::continuation(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
-                               NewtonProgress& progress) {
-  struct Restore {
-    double& value;
-    ~Restore() { value = 1.0; }
-  } restore{homotopy_};
-  double lambda = 0.0, step = 0.125;
-  int failures = 0;
-  while (lambda < 1.0) {
-    const double next = std::min(1.0, lambda + step);
-    const Eigen::VectorXd x0 = unknowns_, scale0 = fill_scale_;
-    homotopy_ = next;
-    if (newton(base, s, stats, progress, false)) {
-      lambda = next;
-      step *= 2.0;
-      continue;
-    }
-    unknowns_ = x0;
-    fill_scale_ = scale0;
-    step *= 0.25;
-    if (++failures > 12 || step < 1e-6) return false;
-  }
-  return true;
-}
-
-void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
-                                     FlowSolveStatistics& stats) {
-  const Eigen::VectorXd start = unknowns_, start_scale = fill_scale_;
-  NewtonProgress progress;
-  if (newton(base, s, stats, progress, false)) return;
-  const Eigen::VectorXd stalled = unknowns_, stalled_scale = fill_scale_;
-  ++stats.restarts;
-  unknowns_ = start;
-  fill_scale_ = start_scale;
-  if (newton(base, s, stats, progress, true)) return;
-  // Further starts. A node that is not yet pressurised but takes in more fluid than it
-  // can hold must end up near the pressure of the node feeding it. On the way there its
-  // mass balance is not monotone: its own pressure opens the fracture behind it and
-  // draws more fluid in, so Newton from the empty side can stall at a local minimum of
-  // the residual (seen at new tips of inclined fractures). Such nodes start at the
-  // largest pressure of their neighbours instead: first those of the warm start, then
-  // those Newton had reached when it stalled (the warm start may not be pressurised
-  // yet, e.g. at the first step).
-  auto flooded = [&](const Eigen::VectorXd& from) {
-    Eigen::VectorXd x = from;
-    for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
-      const int a = fracture_node_a_[k], b = fracture_node_b_[k];
-      if (from[a] <= 0.0) x[a] = std::max(x[a], from[b]);
-      if (from[b] <= 0.0) x[b] = std::max(x[b], from[a]);
-    }
-    return x;
-  };
-  for (const auto& [from, scale] : {std::pair{start, start_scale}, std::pair{stalled, stalled_scale}}) {
-    const Eigen::VectorXd guess = flooded(from);
-    if (guess == from) continue;
-    for (const bool pseudo_transient : {false, true}) {
-      ++stats.restarts;
-      unknowns_ = guess;
-      fill_scale_ = scale;
-      if (newton(base, s, stats, progress, pseudo_transient)) return;
-    }
-  }
-  // Last resort, continuation: the step's inflows, leak-off and flow scaled by lambda
-  // from 0 (the nodes keep their masses: solved by the warm start's fill states) to 1,
-  // each stage solved by Newton from the last. The path follows the physical filling
-  // of the network instead of jumping to it.
-  ++stats.restarts;
-  unknowns_ = start;
-  fill_scale_ = start_scale;
-  if (continuation(base, s, stats, progress)) return;
-  std::ostringstream msg;
-  msg << "fluid flow: Newton iterations did not converge in " << settings_.max_newton_iterations
-      << " iterations (mass residual " << progress.residual << " of the stored mass, last pressure change "
-      << progress.change << " Pa against pressures up to " << progress.max_pressure << " Pa, "
-      << trial_nodes_.size() << " nodes)";
-  throw ConvergenceError(msg.str());
-}
-
 FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, const Eigen::MatrixXd& s) {
   const int n = static_cast<int>(trial_nodes_.size());
   const int nf = static_cast<int>(trial_fractures_.size());
@@ -529,8 +453,17 @@ FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, const Eigen:
   // Mass-conservative update: the stored mass is what flowed in, to round-off.
   pressure_ = ev.pressure;
   aperture_trial_ = ev.aperture;
+  const double round_off = settings_.tolerance * std::max(old_mass_.sum() + injected_.sum(), 1e-300);
   for (int i = 0; i < n; ++i) {
     mass_new_[i] = ev.storage[i] - ev.residual[i];
+    // Stored mass is never negative: a node emptied to within the solve's tolerance
+    // holds none (the ledger then closes to that tolerance); beyond it, the step fails.
+    if (mass_new_[i] < 0.0) {
+      if (mass_new_[i] < -round_off)
+        throw ConvergenceError("fluid flow: a node would store negative mass (" + std::to_string(mass_new_[i]) +
+                               " kg): more fluid leaves it than it holds");
+      mass_new_[i] = 0.0;
+    }
     leak_mass_[i] = ev.density[i] * leak_volume_[i];
     stats.zero_pressure_nodes += unknowns_[i] < 0.0;
   }
@@ -567,9 +500,10 @@ double FlowNetwork::stored_mass() const {
 }
 
 double FlowNetwork::mass_balance_error() const {
-  if (injected_kg_ <= 0.0) return 0.0;
   // The fluid present at t = 0 counts as injected before the first step.
-  return std::abs(injected_kg_ + initial_mass_ - stored_mass() - leaked_kg_) / (injected_kg_ + initial_mass_);
+  const double supplied = injected_kg_ + initial_mass_;
+  if (supplied <= 0.0) return 0.0;
+  return std::abs(supplied - stored_mass() - leaked_kg_) / supplied;
 }
 
 double FlowNetwork::aperture_at_point(int point) const {

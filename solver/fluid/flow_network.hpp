@@ -31,7 +31,8 @@
 // stalls (a closed new tip whose own pressure opens the fracture behind it makes the
 // mass balance non-monotone), the solve falls back, in order, on pseudo-transient
 // continuation, restarts with the dry nodes at their neighbours' pressure, and
-// continuation in the step's inflows; FlowSolveStatistics::restarts counts them
+// continuation in the step's inflows, and last holding the closing joints open for
+// the step; FlowSolveStatistics::restarts counts them
 // (why and with what evidence: docs/design_notes.md section 3).
 //
 // Units SI, per metre of out-of-plane thickness (h = 1 m in eq. 2.2-2.3).
@@ -87,8 +88,9 @@ class FlowNetwork {
 
   void add_injection(const Injection& injection);
   /// Before the first step: the fracture starts wetted, open by `width_m` (at least
-  /// the minimum width) and full of fluid at zero pressure.
-  void fill_initially(int fracture, double width_m);
+  /// the minimum width) and full of fluid at `pressure_Pa` (>= 0; mass rho(p) L w).
+  /// A point shared by fractures filled at different pressures takes the last one.
+  void fill_initially(int fracture, double width_m, double pressure_Pa = 0.0);
 
   // --- one step: begin, then any number of (wet, solve), then commit ----------------
   void begin_step(double dt_s);
@@ -124,7 +126,7 @@ class FlowNetwork {
   double initial_mass() const { return initial_mass_; }
   double leaked_mass() const { return leaked_kg_; }
   double stored_mass() const;
-  /// |initial + injected - stored - leaked| / (initial + injected); 0 before any injection.
+  /// |initial + injected - stored - leaked| / (initial + injected); 0 without any fluid.
   double mass_balance_error() const;
   const FluidProperties& fluid() const { return fluid_; }
   const FlowSettings& settings() const { return settings_; }

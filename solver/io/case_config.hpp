@@ -72,6 +72,7 @@ struct FractureConfig {
   /// flow network from t = 0 (seed 3.2: the joints at the injection point).
   bool fluid_filled = false;
   double initial_width_m = 0.0;       ///< initial aperture of fluid-filled joints (0: the minimum width)
+  double initial_pressure_Pa = 0.0;   ///< initial fluid pressure of fluid-filled joints
   int line = 0;                       ///< case-file line, for error messages
 };
 

@@ -153,6 +153,10 @@ void check_fracture_item(const FileReader& r, const YAML::Node& item, const std:
     r.fail(item["initial_width"], key + ".initial_width",
            "is only used with fluid_filled: true (got " +
                format_number(fracture.initial_width_m) + ")");
+  if (fracture.initial_pressure_Pa > 0 && !fracture.fluid_filled)
+    r.fail(item["initial_pressure"], key + ".initial_pressure",
+           "is only used with fluid_filled: true (got " +
+               format_number(fracture.initial_pressure_Pa) + ")");
 }
 
 const Table<FractureConfig>& fracture_table() {
@@ -161,7 +165,8 @@ const Table<FractureConfig>& fracture_table() {
       "A straight line feature: initial fracture, natural fracture, prescribed path or "
       "interface. Joints lying on it take its values; unset values come from `joints`. "
       "`from` and `to` differ. `fluid_filled: true` needs `initially_open: true` and "
-      "excludes `pressure`; `initial_width` > 0 needs `fluid_filled: true`.",
+      "excludes `pressure`; `initial_width` > 0 and `initial_pressure` > 0 need "
+      "`fluid_filled: true`.",
       {text({"name", "", "", "label used in outputs"}, &FractureConfig::name),
        required(point({"from", "m", "§3.1: 20 m fracture at the centre", "first end"},
                       &FractureConfig::from, "inside domain.outer")),
@@ -196,13 +201,18 @@ const Table<FractureConfig>& fracture_table() {
        boolean({"fluid_filled", "",
                 "§3.2: the two fractures on either side of the injection point were "
                 "initially opened",
-                "its open joints hold fluid (at zero pressure) and belong to the flow "
+                "its open joints hold fluid (at `initial_pressure`) and belong to the flow "
                 "network from t = 0; needs a `fluid` section"},
                &FractureConfig::fluid_filled),
        number({"initial_width", "m", "",
                "initial aperture of its fluid-filled joints; 0: the minimum width "
                "(numerics.min_width_main)"},
-              &FractureConfig::initial_width_m, at_least(0), "> 0 only with fluid_filled")}};
+              &FractureConfig::initial_width_m, at_least(0), "> 0 only with fluid_filled"),
+       number({"initial_pressure", "Pa",
+               "§3.3: notch fluid at 0.08 % compression by mass, i.e. 0.0008 K_f",
+               "initial fluid pressure of its fluid-filled joints: they hold rho(p) times "
+               "their volume (fluid.bulk_modulus, eq. 2.6)"},
+              &FractureConfig::initial_pressure_Pa, at_least(0), "> 0 only with fluid_filled")}};
   return table;
 }
 
@@ -252,9 +262,11 @@ const Table<InjectionConfig>& injection_table() {
 const Table<ProbeConfig>& probe_table() {
   static const Table<ProbeConfig> table{
       "`probes[]` items",
-      "A gauge read at the mesh vertex nearest `at` every step; its pressure is the "
-      "history.csv column `probe_<name>_pressure_Pa`, so names are distinct and use "
-      "letters, digits and `_` only. Needs a `fluid` section.",
+      "A gauge read at the mesh vertex nearest `at` every step; its pressure and its "
+      "hydraulic aperture (mean aperture of the fluid-filled joints meeting at the "
+      "vertex, 0 where none does) are the history.csv columns "
+      "`probe_<name>_pressure_Pa` and `probe_<name>_aperture_m`, so names are distinct "
+      "and use letters, digits and `_` only. Needs a `fluid` section.",
       {required(identifier({"name", "", "", "gauge name, part of the output column names"},
                            &ProbeConfig::name)),
        required(point({"at", "m", "", "gauge location (the nearest mesh vertex is used)"},

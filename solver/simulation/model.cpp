@@ -163,7 +163,7 @@ void build_flow_network(Model& model, const io::CaseConfig& c) {
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     const int f = model.fracture_of_joint[j];
     if (f < 0 || !c.fractures[f].fluid_filled) continue;
-    model.flow->fill_initially(static_cast<int>(j), c.fractures[f].initial_width_m);
+    model.flow->fill_initially(static_cast<int>(j), c.fractures[f].initial_width_m, c.fractures[f].initial_pressure_Pa);
     filled_point[m.joints[j].point_p] = filled_point[m.joints[j].point_q] = 1;
   }
   for (std::size_t i = 0; i < c.injections.size(); ++i) {

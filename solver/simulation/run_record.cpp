@@ -138,7 +138,10 @@ std::vector<OutputColumn> probe_columns(const std::string& name, std::size_t ind
            [index](const StepContext& c) {
              return c.model.flow ? c.model.flow->pressure(c.model.probe_points[index]) : 0.0;
            }},
-          {"probe_" + name + "_aperture_m", "m", "aperture at probe `" + name + "` (0 without a flow network)",
+          {"probe_" + name + "_aperture_m", "m",
+           "hydraulic aperture at probe `" + name +
+               "`: mean aperture of the fluid-filled joints meeting at its mesh point (as the flow uses it, at "
+               "least the minimum width); 0 where none meets there and without a flow network",
            [index](const StepContext& c) {
              return c.model.flow ? c.model.flow->aperture_at_point(c.model.probe_points[index]) : 0.0;
            }}};

@@ -49,7 +49,7 @@ TEST(CaseFileDocs, ReferenceNamesEveryFluidKey) {
   const std::string reference = case_file_reference_markdown();
   for (const char* key :
        {"## `fluid`", "## `injections[]` items", "## `probes[]` items", "`fluid_filled`",
-        "`initial_width`", "`bulk_modulus`", "`viscosity`", "`reference_pressure`",
+        "`initial_width`", "`initial_pressure`", "`bulk_modulus`", "`viscosity`", "`reference_pressure`",
         "`leak_off_coefficient`", "`mass_rate`", "`start_time`", "`min_width_main`",
         "`min_width_tip`", "`max_closing_fraction`", "`coupling_tolerance`",
         "`max_coupling_iterations`", "`max_step_cuts`", "erratum 4 in docs/seed_errata.md",

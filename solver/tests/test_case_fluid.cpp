@@ -175,6 +175,24 @@ TEST(CaseFileFluid, InitialWidthNeedsFluidFilled) {
                                  "ok.yaml"));
 }
 
+TEST(CaseFileFluid, InitialPressureNeedsFluidFilled) {
+  expect_text_error(
+      "fractures:\n  - from: [0, 0]\n    to: [1, 0]\n    initially_open: true\n"
+      "    initial_pressure: 1.38e6\n",
+      5, "fractures[0].initial_pressure", "only used with fluid_filled: true (got 1380000)");
+  expect_text_error(
+      "fractures:\n  - from: [0, 0]\n    to: [1, 0]\n    initially_open: true\n"
+      "    fluid_filled: true\n    initial_pressure: -1\n",
+      6, "fractures[0].initial_pressure", ">= 0");
+  const CaseConfig c = load_case_text(
+      "fractures: [{from: [-1, 0], to: [1, 0], initially_open: true, fluid_filled: true,\n"
+      "             initial_width: 1.0e-3, initial_pressure: 1.38e6}]\n"
+      "fluid: {}\ninjections: [{at: [0, 0], mass_rate: 1}]\n",
+      "ok.yaml");
+  EXPECT_EQ(c.fractures[0].initial_pressure_Pa, 1.38e6);
+  EXPECT_EQ(load_case_text(fluid_case(""), "default.yaml").fractures[0].initial_pressure_Pa, 0.0);
+}
+
 TEST(CaseFileFluid, FlowNetworkPartsNeedAFluidSection) {
   expect_text_error("title: x\ninjections:\n  - {at: [0, 0], mass_rate: 1}\n", 2, "injections",
                     "needs a 'fluid' section");

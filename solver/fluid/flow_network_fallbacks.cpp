@@ -1,0 +1,111 @@
+#include <algorithm>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "fluid/flow_network.hpp"
+
+// The fallbacks of the flow solve, tried in order when Newton from the warm start
+// stalls (why and with what evidence: docs/design_notes.md section 3).
+
+namespace hfdda::fluid {
+
+bool FlowNetwork::continuation(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
+                               NewtonProgress& progress) {
+  struct Restore {
+    double& value;
+    ~Restore() { value = 1.0; }
+  } restore{homotopy_};
+  double lambda = 0.0, step = 0.125;
+  int failures = 0;
+  while (lambda < 1.0) {
+    const double next = std::min(1.0, lambda + step);
+    const Eigen::VectorXd x0 = unknowns_, scale0 = fill_scale_;
+    homotopy_ = next;
+    if (newton(base, s, stats, progress, false)) {
+      lambda = next;
+      step *= 2.0;
+      continue;
+    }
+    unknowns_ = x0;
+    fill_scale_ = scale0;
+    step *= 0.25;
+    if (++failures > 12 || step < 1e-6) return false;
+  }
+  return true;
+}
+
+void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
+                                     FlowSolveStatistics& stats) {
+  const Eigen::VectorXd start = unknowns_, start_scale = fill_scale_;
+  NewtonProgress progress;
+  if (newton(base, s, stats, progress, false)) return;
+  const Eigen::VectorXd stalled = unknowns_, stalled_scale = fill_scale_;
+  ++stats.restarts;
+  unknowns_ = start;
+  fill_scale_ = start_scale;
+  if (newton(base, s, stats, progress, true)) return;
+  // Further starts. A node that is not yet pressurised but takes in more fluid than it
+  // can hold must end up near the pressure of the node feeding it. On the way there its
+  // mass balance is not monotone: its own pressure opens the fracture behind it and
+  // draws more fluid in, so Newton from the empty side can stall at a local minimum of
+  // the residual (seen at new tips of inclined fractures). Such nodes start at the
+  // largest pressure of their neighbours instead: first those of the warm start, then
+  // those Newton had reached when it stalled (the warm start may not be pressurised
+  // yet, e.g. at the first step).
+  auto flooded = [&](const Eigen::VectorXd& from) {
+    Eigen::VectorXd x = from;
+    for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
+      const int a = fracture_node_a_[k], b = fracture_node_b_[k];
+      if (from[a] <= 0.0) x[a] = std::max(x[a], from[b]);
+      if (from[b] <= 0.0) x[b] = std::max(x[b], from[a]);
+    }
+    return x;
+  };
+  for (const auto& [from, scale] : {std::pair{start, start_scale}, std::pair{stalled, stalled_scale}}) {
+    const Eigen::VectorXd guess = flooded(from);
+    if (guess == from) continue;
+    for (const bool pseudo_transient : {false, true}) {
+      ++stats.restarts;
+      unknowns_ = guess;
+      fill_scale_ = scale;
+      if (newton(base, s, stats, progress, pseudo_transient)) return;
+    }
+  }
+  // Last resort, continuation: the step's inflows, leak-off and flow scaled by lambda
+  // from 0 (the nodes keep their masses: solved by the warm start's fill states) to 1,
+  // each stage solved by Newton from the last. The path follows the physical filling
+  // of the network instead of jumping to it.
+  ++stats.restarts;
+  unknowns_ = start;
+  fill_scale_ = start_scale;
+  if (continuation(base, s, stats, progress)) return;
+  // Last resort: the closing limit waits for the fluid. The limit (at most 5 % a step,
+  // seed 2.1) is there "to facilitate convergence"; where no solve meets it, a node
+  // cannot pass on the fluid its closing joints squeeze out. That happens at a tip of a
+  // fluid-filled fracture with nothing injected (shut-in, or before an injection
+  // starts): the mechanics pins the tip end shut, so its fluid must leave through the
+  // thin joint behind it, whose conductance only a large pressure opens. The joints
+  // then do not close in this step (floor = the committed aperture); the raised floors
+  // hold for the rest of the step.
+  ++stats.restarts;
+  const Eigen::VectorXd floor = floor_;
+  for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
+    const int f = trial_fractures_[k];
+    if (!wetted_[f]) continue;
+    for (int end = 0; end < 2; ++end) floor_[2 * k + end] = std::max(floor_[2 * k + end], aperture_[2 * f + end]);
+  }
+  for (const bool pseudo_transient : {false, true}) {
+    unknowns_ = start;
+    fill_scale_ = start_scale;
+    if (newton(base, s, stats, progress, pseudo_transient)) return;
+  }
+  floor_ = floor;
+  std::ostringstream msg;
+  msg << "fluid flow: Newton iterations did not converge in " << settings_.max_newton_iterations
+      << " iterations (mass residual " << progress.residual << " of the stored mass, last pressure change "
+      << progress.change << " Pa against pressures up to " << progress.max_pressure << " Pa, "
+      << trial_nodes_.size() << " nodes)";
+  throw ConvergenceError(msg.str());
+}
+
+}  // namespace hfdda::fluid
