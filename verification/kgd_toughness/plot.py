@@ -103,7 +103,7 @@ def figure(result_dir, metrics, filename, title, variants):
         ax.set_xlabel("time t [s]")
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=6.5, loc="upper left")
+    axes[0].legend(fontsize=6.5, loc="lower right")  # the curves rise from the lower left
     if plotted == 0:
         for ax in axes:
             ax.text(0.5, 0.5, "no completed run data", transform=ax.transAxes, ha="center", color="r")
