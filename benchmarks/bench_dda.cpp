@@ -37,7 +37,10 @@ std::unique_ptr<DdaCase> make_system(int cells_per_side) {
   spec.cell_size_m = h;
   spec.split = mesh::CellSplit::four;
   mesh::Mesh m = mesh::build_structured_mesh(spec);
-  mesh::build_topology(m, mesh::JointProperties{0.0, 0.0, 0.5236, false, false, false, -1.0});
+  mesh::JointProperties unbreakable;
+  unbreakable.friction_angle_rad = 0.5236;
+  unbreakable.breakable = false;
+  mesh::build_topology(m, unbreakable);
   const double crack = std::floor(half / 3.0);
   std::vector<double> pressure(m.points.size(), 0.0);
   std::vector<char> wetted(m.joints.size(), 0);

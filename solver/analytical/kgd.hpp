@@ -87,4 +87,74 @@ inline KgdViscositySolution kgd_viscosity_storage(double youngs_modulus_Pa, doub
   return s;
 }
 
+// ---------------------------------------------------------------------------
+// KGD fracture in the toughness-storage regime: zero viscosity, zero leak-off, constant
+// total injection rate, Mode I toughness K_IC. The "K-vertex" of Detournay's parametric
+// space (Garagash & Detournay 2005; seed section 4.5, eqs. 4.31-4.32). The fluid
+// pressure is uniform along the fracture, so the solution is exact in closed form.
+//
+// Inputs: E, nu (-> E'), K_IC [Pa m^0.5] -> K' = 4 sqrt(2/pi) K_IC = sqrt(32/pi) K_IC,
+// Q0 total rate into both wings per metre of height [m^2/s], t since injection start [s].
+// Scalings (seed eq. 4.32):
+//   zeta(t) = (K' / (E' (Q0 t)^(1/4)))^(4/3)      [-]
+//   psi(t)  = (E' Q0 t / K')^(2/3)                [m]
+// Solution (seed eq. 4.31 with erratum 3 in docs/seed_errata.md for w0):
+//   l(t)  = Gamma psi,                 Gamma  = 2 / pi^(2/3) = 0.9324
+//   w0(t) = zeta psi Gamma Omega0,     Omega0 = 0.7323 (Gamma Omega0 = pi^(-1/3) = 0.6828)
+//   p0(t) = zeta E' Phi0,              Phi0   = pi^(1/3) / 8 = 0.1831   (net pressure)
+// Independent check (tests/test_analytical_kgd.cpp): a crack of half-length l under a
+// uniform net pressure p opens as w = (4 p / E') sqrt(l^2 - x^2), so K_I = p sqrt(pi l),
+// w0 = 4 p l / E' and its volume is 2 pi p l^2 / E'; K_I = K_IC and volume = Q0 t give
+// the three formulas above with the exact constants.
+// Growth laws: l ~ t^(2/3), w0 ~ t^(1/3), p0 ~ t^(-1/3).
+
+/// Dimensionless K-vertex constants of the seed (section 4.5), as printed.
+inline constexpr double kKgdKGamma = 0.9324;   ///< normalised half-length
+inline constexpr double kKgdKOmega0 = 0.7323;  ///< normalised inlet opening (per half-length, erratum 3)
+inline constexpr double kKgdKPhi0 = 0.1831;    ///< normalised inlet (uniform) net pressure
+
+/// K' = 4 sqrt(2 / pi) K_IC [Pa m^0.5].
+inline double scaled_toughness(double fracture_toughness_Pa_sqrt_m) {
+  return 4.0 * std::sqrt(2.0 / std::acos(-1.0)) * fracture_toughness_Pa_sqrt_m;
+}
+
+/// Toughness matched to a tensile strength T0 [Pa] on joints of length L [m]:
+/// K_IC = T0 sqrt(pi L / 2) (seed eq. 4.13; erratum 7 in docs/seed_errata.md).
+inline double toughness_of_tensile_strength(double tensile_strength_Pa, double joint_length_m) {
+  return tensile_strength_Pa * std::sqrt(std::acos(-1.0) * joint_length_m / 2.0);
+}
+
+/// K-vertex KGD state at one time; every field in SI units.
+struct KgdToughnessSolution {
+  double time_s = 0.0;
+  double plane_strain_modulus_Pa = 0.0;  ///< E'
+  double scaled_toughness_Pa_sqrt_m = 0.0;  ///< K'
+  double zeta = 0.0;                     ///< (K' / (E' (Q0 t)^(1/4)))^(4/3), eq. 4.32 [-]
+  double psi_m = 0.0;                    ///< (E' Q0 t / K')^(2/3), eq. 4.32 [m]
+  double half_length_m = 0.0;            ///< l = Gamma psi
+  double inlet_width_m = 0.0;            ///< w0 = zeta psi Gamma Omega0 (erratum 3)
+  double inlet_net_pressure_Pa = 0.0;    ///< p0 = zeta E' Phi0, uniform along the fracture
+};
+
+/// Zero-viscosity, zero-leak-off KGD fracture (K-vertex) at time t > 0 for toughness
+/// K_IC [Pa m^0.5] and total injection rate Q0 [m^2/s] (both wings, per metre of height).
+/// Seed section 4.5, eqs. 4.31-4.32, with erratum 3 in docs/seed_errata.md for w0.
+inline KgdToughnessSolution kgd_toughness_storage(double youngs_modulus_Pa, double poissons_ratio,
+                                                  double fracture_toughness_Pa_sqrt_m, double total_rate_m2_s,
+                                                  double time_s) {
+  KgdToughnessSolution s;
+  const double Ep = plane_strain_modulus(youngs_modulus_Pa, poissons_ratio);
+  const double Kp = scaled_toughness(fracture_toughness_Pa_sqrt_m);
+  const double Qt = total_rate_m2_s * time_s;
+  s.time_s = time_s;
+  s.plane_strain_modulus_Pa = Ep;
+  s.scaled_toughness_Pa_sqrt_m = Kp;
+  s.zeta = std::pow(Kp / (Ep * std::pow(Qt, 0.25)), 4.0 / 3.0);  // eq. 4.32
+  s.psi_m = std::pow(Ep * Qt / Kp, 2.0 / 3.0);                     // eq. 4.32
+  s.half_length_m = kKgdKGamma * s.psi_m;                          // eq. 4.31
+  s.inlet_width_m = s.zeta * s.psi_m * kKgdKGamma * kKgdKOmega0;   // eq. 4.31, erratum 3
+  s.inlet_net_pressure_Pa = s.zeta * Ep * kKgdKPhi0;               // eq. 4.31
+  return s;
+}
+
 }  // namespace hfdda::analytical

@@ -41,7 +41,10 @@ CoupledStep::CoupledStep(dda::BlockSystem& mechanics, std::vector<FluidLoadModel
     : mechanics_(mechanics), fluids_(std::move(fluids)), rules_(rules), trace_cuts_(trace_cuts) {
   const auto& joints = mechanics_.mesh().joints;
   bond_strength_.reserve(joints.size());
-  for (const auto& joint : joints) bond_strength_.push_back(fracture::bond_strength(joint.properties));
+  const auto& points = mechanics_.mesh().points;
+  for (const auto& joint : joints)
+    bond_strength_.push_back(
+        fracture::bond_strength(joint.properties, (points[joint.point_q] - points[joint.point_p]).norm()));
   pressurised_.assign(mechanics_.mesh().points.size(), 0);
 }
 

@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace hfdda::fracture {
 
-BondStrength bond_strength(const mesh::JointProperties& p) {
-  return {p.tensile_strength_Pa, p.cohesion_Pa, std::tan(p.friction_angle_rad)};
+double tensile_strength_from_toughness(double fracture_toughness_Pa_sqrt_m, double joint_length_m) {
+  return fracture_toughness_Pa_sqrt_m / std::sqrt(std::numbers::pi * joint_length_m / 2.0);  // eq. 4.13
+}
+
+BondStrength bond_strength(const mesh::JointProperties& p, double joint_length_m) {
+  const double t0 = p.fracture_toughness_Pa_sqrt_m
+                        ? tensile_strength_from_toughness(*p.fracture_toughness_Pa_sqrt_m, joint_length_m)
+                        : p.tensile_strength_Pa;
+  return {t0, p.cohesion_Pa, std::tan(p.friction_angle_rad)};
 }
 
 FailureMode failure_mode(const Bond& b, bool shear_failure_of_intact_joints) {

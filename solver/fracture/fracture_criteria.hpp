@@ -6,9 +6,9 @@
 // tractions of an open-close iteration and applying its state changes.
 //
 // The pieces, each replaceable on its own:
-//   bond_strength()   T0, C0, phi of a joint's bond from its properties (a fracture
-//                     toughness input, T0 = K_IC / sqrt(pi L / 2) by seed eq. 4.13,
-//                     would be computed here)
+//   bond_strength()   T0, C0, phi of a joint's bond from its properties; a fracture
+//                     toughness K_IC becomes T0 = K_IC / sqrt(pi L / 2) from the
+//                     joint's length L (seed eq. 4.13)
 //   failure_mode()    the criterion: Rankine tension, else Mohr-Coulomb shear
 //   may_fail()        eligibility, seed 2.3 (i)
 //   most_stressed()   selection among the tension failures, seed 2.3 (iii)
@@ -28,7 +28,14 @@ struct BondStrength {
 };
 
 /// The bond strength of a joint from its properties (both of its contacts share it).
-BondStrength bond_strength(const mesh::JointProperties& properties);
+/// With a fracture toughness K_IC [Pa m^0.5] the tensile strength is
+/// T0 = K_IC / sqrt(pi L / 2), L = joint_length_m the whole joint's length (seed eq. 4.13:
+/// the joint ahead of a crack tip carries K_I sqrt(2 L / pi) at failure); without one it
+/// is properties.tensile_strength_Pa and the length is not used.
+BondStrength bond_strength(const mesh::JointProperties& properties, double joint_length_m);
+
+/// T0 = K_IC / sqrt(pi L / 2) [Pa] for toughness K_IC [Pa m^0.5] and joint length L [m] (seed eq. 4.13).
+double tensile_strength_from_toughness(double fracture_toughness_Pa_sqrt_m, double joint_length_m);
 
 /// The rules of seed 2.3 that are case settings.
 struct FractureRules {

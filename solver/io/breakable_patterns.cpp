@@ -50,7 +50,8 @@ bool is_diagonal(Family family) { return family == Family::plus_45 || family == 
 
 /// Lines are what a pattern is for: an empty list is a mistake, not "nothing".
 void check_pattern_item(const FileReader& r, const YAML::Node& item, const std::string& key,
-                        const BreakablePatternConfig& pattern, const std::set<std::string>&) {
+                        const BreakablePatternConfig& pattern, const std::set<std::string>& seen) {
+  check_strength_choice(r, item, key, seen);
   if (pattern.lines.empty())
     r.fail(item["lines"], key + ".lines",
            "must name at least one family of lines: " + join(choice_names(families()), ", "));
@@ -89,6 +90,8 @@ const Table<BreakablePatternConfig>& pattern_table() {
        optional_number({"tensile_strength", "Pa", "§3.5: T0 = 0.1 MPa on -45 deg diagonals",
                         "tensile strength T0 of the bonds on its lines"},
                        &P::tensile_strength_Pa, at_least(0), "joints.tensile_strength"),
+       fracture_toughness_key<P>("T0 of the bonds on its lines", &P::fracture_toughness_Pa_sqrt_m,
+                                 "joints.fracture_toughness"),
        optional_number({"cohesion", "Pa", "", "cohesion C0 of the bonds on its lines"},
                        &P::cohesion_Pa, at_least(0), "joints.cohesion"),
        optional_number({"friction_angle", "deg", "", "friction angle of the joints on its lines"},
@@ -231,6 +234,7 @@ FractureConfig line_feature(const BreakablePatternConfig& p, const std::string& 
   feature.to = piece.to;
   feature.breakable = p.breakable;
   feature.tensile_strength_Pa = p.tensile_strength_Pa;
+  feature.fracture_toughness_Pa_sqrt_m = p.fracture_toughness_Pa_sqrt_m;
   feature.cohesion_Pa = p.cohesion_Pa;
   feature.friction_angle_deg = p.friction_angle_deg;
   feature.line = p.line;

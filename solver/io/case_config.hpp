@@ -47,6 +47,8 @@ struct MaterialConfig {
 /// Defaults of every joint; fractures may override them.
 struct JointConfig {
   double tensile_strength_Pa = 0.0;
+  /// K_IC; set, each joint's T0 is K_IC / sqrt(pi L / 2) from its length L (seed eq. 4.13)
+  std::optional<double> fracture_toughness_Pa_sqrt_m;
   double cohesion_Pa = 0.0;
   double friction_angle_deg = 30.0;
   bool breakable = true;
@@ -65,6 +67,7 @@ struct FractureConfig {
   bool natural = false;
   std::optional<bool> breakable;
   std::optional<double> tensile_strength_Pa;
+  std::optional<double> fracture_toughness_Pa_sqrt_m;  ///< K_IC; the item's own T0 or K_IC wins over `joints`
   std::optional<double> cohesion_Pa;
   std::optional<double> friction_angle_deg;
   std::optional<double> pressure_Pa;  ///< prescribed fluid pressure on its joints
@@ -93,6 +96,7 @@ struct BreakablePatternConfig {
   std::vector<std::string> lines;
   bool breakable = true;
   std::optional<double> tensile_strength_Pa;  ///< unset: joints.tensile_strength
+  std::optional<double> fracture_toughness_Pa_sqrt_m;  ///< K_IC; unset: joints.fracture_toughness
   std::optional<double> cohesion_Pa;          ///< unset: joints.cohesion
   std::optional<double> friction_angle_deg;   ///< unset: joints.friction_angle
   int line = 0;                               ///< case-file line, for error messages

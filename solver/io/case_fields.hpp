@@ -156,13 +156,21 @@ Field<T> required(Field<T> field) {
   return field;
 }
 
-/// A nested map merged key by key into member `S T::*`.
+/// Check of one complete list item or map (keys present in `seen`), made while reading it.
+template <class Item>
+using ItemCheck = std::function<void(const FileReader&, const YAML::Node& item,
+                                     const std::string& key, const Item&,
+                                     const std::set<std::string>& seen)>;
+
+/// A nested map merged key by key into member `S T::*`; `check` sees each written map.
 template <class T, class S>
-Field<T> section(Doc d, S T::*member, const Table<S>& (*table)()) {
+Field<T> section(Doc d, S T::*member, const Table<S>& (*table)(),
+                 std::type_identity_t<ItemCheck<S>> check = {}) {
   KeyDoc doc = key_doc(d, "map", "see " + table().title, "keys below");
   doc.child = [table] { return section_doc(table()); };
-  auto read = [member, table](FileReader& r, const YAML::Node& n, const std::string& key, T& out) {
-    parse_map(r, n, key, table(), out.*member);
+  auto read = [member, table, check](FileReader& r, const YAML::Node& n, const std::string& key, T& out) {
+    const auto seen = parse_map(r, n, key, table(), out.*member);
+    if (check) check(r, n, key, out.*member, seen);
   };
   return {doc, read};
 }
@@ -208,6 +216,29 @@ Field<T> identifier(Doc d, std::string T::*member) {
           read};
 }
 
+// --- Bond strength: T0 or K_IC ---------------------------------------------
+
+/// `fracture_toughness` of `joints`, a fracture or a pattern: K_IC instead of T0 (`what`
+/// completes "K_IC that sets ..."); `fallback` names where an unset value comes from.
+template <class T>
+Field<T> fracture_toughness_key(const std::string& what, std::optional<double> T::*member,
+                                std::string fallback) {
+  return optional_number(
+      {"fracture_toughness", "Pa m^0.5", "eq. 4.13; §4.5: K_IC = 0.886 and 4.43 MPa m^0.5 (erratum 7)",
+       "Mode I toughness K_IC that sets " + what + " joint by joint: T0 = K_IC / sqrt(pi L / 2), "
+       "L the joint's length, so the strength follows the mesh and the toughness does not; "
+       "excludes tensile_strength in the same map"},
+      member, greater_than(0), std::move(fallback));
+}
+
+/// `tensile_strength` and `fracture_toughness` written in the same map.
+inline void check_strength_choice(const FileReader& r, const YAML::Node& map, const std::string& key,
+                                  const std::set<std::string>& seen) {
+  if (seen.contains("tensile_strength") && seen.contains("fracture_toughness"))
+    r.fail(map["fracture_toughness"], child_key(key, "fracture_toughness"),
+           "give tensile_strength or fracture_toughness, not both");
+}
+
 // --- Rectangles -------------------------------------------------------------
 
 /// The keys of a rectangle (given whole, xmin < xmax and ymin < ymax).
@@ -242,12 +273,6 @@ Field<T> optional_rect(Doc d, std::optional<Rect> T::*member, std::string allowe
 }
 
 // --- Lists ------------------------------------------------------------------
-
-/// Check of one complete list item (keys present in `seen`), made while reading it.
-template <class Item>
-using ItemCheck = std::function<void(const FileReader&, const YAML::Node& item,
-                                     const std::string& key, const Item&,
-                                     const std::set<std::string>& seen)>;
 
 /// A list of maps, replaced as a whole; each item starts from Item's defaults.
 template <class T, class Item>

@@ -112,14 +112,32 @@ const Table<MaterialConfig>& material_table() {
   return table;
 }
 
+/// joints.tensile_strength: written in a later file of the extends chain, it replaces an
+/// inherited fracture_toughness (the later file's choice wins).
+Field<JointConfig> joint_tensile_strength() {
+  Field<JointConfig> field = number({"tensile_strength", "Pa", "Table 3.1: T0 = 0; Table 5.1: T0 = 6 MPa",
+                                     "tensile strength T0 of intact bonds (seed eq. 2.16)"},
+                                    &JointConfig::tensile_strength_Pa, at_least(0));
+  field.read = [read = field.read](FileReader& r, const YAML::Node& n, const std::string& key, JointConfig& out) {
+    read(r, n, key, out);
+    out.fracture_toughness_Pa_sqrt_m.reset();
+  };
+  return field;
+}
+
+void check_joints(const FileReader& r, const YAML::Node& map, const std::string& key, const JointConfig&,
+                  const std::set<std::string>& seen) {
+  check_strength_choice(r, map, key, seen);
+}
+
 const Table<JointConfig>& joint_table() {
   static const Table<JointConfig> table{
       "`joints`",
       "Every joint (bond between two blocks) takes these values unless a fracture on it "
-      "overrides them.",
-      {number({"tensile_strength", "Pa", "Table 3.1: T0 = 0; Table 5.1: T0 = 6 MPa",
-               "tensile strength T0 of intact bonds (seed eq. 2.16)"},
-              &JointConfig::tensile_strength_Pa, at_least(0)),
+      "overrides them. Give `tensile_strength` or `fracture_toughness`, not both, in one map; "
+      "a file that `extends` another replaces the inherited choice with its own.",
+      {joint_tensile_strength(),
+       fracture_toughness_key("T0 of intact bonds", &JointConfig::fracture_toughness_Pa_sqrt_m, "none"),
        number({"cohesion", "Pa", "Tables 5.1, 5.3: C0",
                "cohesion C0 of intact bonds (seed eq. 2.16)"},
               &JointConfig::cohesion_Pa, at_least(0)),
@@ -138,7 +156,8 @@ const Table<JointConfig>& joint_table() {
 /// open, and the pressure of fluid-filled joints is solved for, not prescribed. Each
 /// flagged value was written in this item (list items start from the defaults).
 void check_fracture_item(const FileReader& r, const YAML::Node& item, const std::string& key,
-                         const FractureConfig& fracture, const std::set<std::string>&) {
+                         const FractureConfig& fracture, const std::set<std::string>& seen) {
+  check_strength_choice(r, item, key, seen);
   if (fracture.from == fracture.to)
     r.fail(item["to"], key + ".to",
            "must differ from 'from' (both are " + format_point(fracture.from) + ")");
@@ -164,6 +183,8 @@ const Table<FractureConfig>& fracture_table() {
       "`fractures[]` items",
       "A straight line feature: initial fracture, natural fracture, prescribed path or "
       "interface. Joints lying on it take its values; unset values come from `joints`. "
+      "Its own `tensile_strength` or `fracture_toughness` (not both) wins over the choice "
+      "of `joints`. "
       "`from` and `to` differ. `fluid_filled: true` needs `initially_open: true` and "
       "excludes `pressure`; `initial_width` > 0 and `initial_pressure` > 0 need "
       "`fluid_filled: true`.",
@@ -188,6 +209,8 @@ const Table<FractureConfig>& fracture_table() {
                         "tensile strength T0 of its bonds"},
                        &FractureConfig::tensile_strength_Pa, at_least(0),
                        "joints.tensile_strength"),
+       fracture_toughness_key("T0 of its bonds", &FractureConfig::fracture_toughness_Pa_sqrt_m,
+                              "joints.fracture_toughness"),
        optional_number({"cohesion", "Pa", "Table 5.1: natural fracture C0 = 0",
                         "cohesion C0 of its bonds"},
                        &FractureConfig::cohesion_Pa, at_least(0), "joints.cohesion"),
@@ -423,7 +446,7 @@ const Table<CaseConfig>& case_table() {
                 &CaseConfig::materials, &material_table, 1,
                 "one material with the item defaults", check_material_item),
        section({"joints", "", "Table 3.1: fracture parameters", "default joint strength"},
-               &CaseConfig::joints, &joint_table),
+               &CaseConfig::joints, &joint_table, check_joints),
        map_list({"fractures", "", "§3.1-3.5, §5.2-5.4", "line features"},
                 &CaseConfig::fractures, &fracture_table, 0, "none", check_fracture_item),
        breakable_patterns_key(),

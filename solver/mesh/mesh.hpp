@@ -8,6 +8,7 @@
 // blocks can separate while the mesh topology stays fixed (contact list built once,
 // seed 2.3 iv).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,8 @@ namespace hfdda::mesh {
 /// Strength and flags of one joint (bond between two blocks). SI units.
 struct JointProperties {
   double tensile_strength_Pa = 0.0;   ///< T0, Rankine limit of the bond
+  /// K_IC [Pa m^0.5]; set, it replaces T0 by K_IC / sqrt(pi L / 2), L the joint's length (seed eq. 4.13)
+  std::optional<double> fracture_toughness_Pa_sqrt_m;
   double cohesion_Pa = 0.0;           ///< C0, Mohr-Coulomb cohesion of the bond
   double friction_angle_rad = 0.0;    ///< phi
   bool initially_open = false;        ///< bond already broken at t = 0 (initial fracture)

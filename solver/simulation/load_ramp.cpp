@@ -76,11 +76,14 @@ std::vector<double> LoadRamp::margins(const dda::BlockSystem& system) const {
   const auto& joints = system.mesh().joints;
   std::vector<double> m;
   m.reserve(bond_contacts_.size());
+  const auto& points = system.mesh().points;
   for (int ci : bond_contacts_) {
     fracture::Bond b;
     b.length_m = contacts[ci].length_m;
     std::tie(b.normal_N, b.shear_N) = system.contact_forces(ci);
-    b.strength = fracture::bond_strength(joints[contacts[ci].joint].properties);
+    const mesh::Joint& joint = joints[contacts[ci].joint];
+    // The undeformed joint length, as the coupled step uses it (toughness input, eq. 4.13).
+    b.strength = fracture::bond_strength(joint.properties, (points[joint.point_q] - points[joint.point_p]).norm());
     m.push_back(fracture::failure_margin_N(b, shear_failure_));
   }
   return m;

@@ -60,6 +60,7 @@ void restrict_breaking_to_inner(mesh::Mesh& m, const io::CaseConfig& c) {
 mesh::JointProperties default_joint_properties(const io::CaseConfig& c) {
   mesh::JointProperties p;
   p.tensile_strength_Pa = c.joints.tensile_strength_Pa;
+  p.fracture_toughness_Pa_sqrt_m = c.joints.fracture_toughness_Pa_sqrt_m;
   p.cohesion_Pa = c.joints.cohesion_Pa;
   p.friction_angle_rad = c.joints.friction_angle_deg * std::numbers::pi / 180.0;
   p.breakable = c.joints.breakable;
@@ -90,7 +91,12 @@ std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c) {
       p.initially_open = p.initially_open || fr.initially_open;
       p.natural = p.natural || fr.natural;
       if (fr.breakable) p.breakable = *fr.breakable;
-      if (fr.tensile_strength_Pa) p.tensile_strength_Pa = *fr.tensile_strength_Pa;
+      // The fracture's own choice of T0 or K_IC wins over the one of `joints` (or of an earlier fracture).
+      if (fr.tensile_strength_Pa) {
+        p.tensile_strength_Pa = *fr.tensile_strength_Pa;
+        p.fracture_toughness_Pa_sqrt_m.reset();
+      }
+      if (fr.fracture_toughness_Pa_sqrt_m) p.fracture_toughness_Pa_sqrt_m = fr.fracture_toughness_Pa_sqrt_m;
       if (fr.cohesion_Pa) p.cohesion_Pa = *fr.cohesion_Pa;
       if (fr.friction_angle_deg) p.friction_angle_rad = *fr.friction_angle_deg * std::numbers::pi / 180.0;
       if (fr.pressure_Pa) p.prescribed_pressure_Pa = *fr.pressure_Pa;

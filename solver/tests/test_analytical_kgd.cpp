@@ -1,6 +1,8 @@
-// KGD viscosity-storage (M-vertex) reference solution, analytical/kgd.hpp: the two
+// KGD reference solutions, analytical/kgd.hpp. Viscosity storage (M-vertex): the two
 // published forms of the inlet width and pressure agree, the growth laws hold, and one
-// value computed by hand (seed 3.2 parameters) is reproduced.
+// value computed by hand (seed 3.2 parameters) is reproduced. Toughness storage
+// (K-vertex, seed 4.5): the seed's constants against the exact closed forms and against
+// a uniformly pressurised crack, and values computed by hand.
 
 #include <gtest/gtest.h>
 
@@ -71,6 +73,69 @@ TEST(AnalyticalKgd, VolumeBalanceGivesAPlausibleProfile) {
   EXPECT_NEAR(ca, cb, 1e-12 * cb);
   EXPECT_GT(cb, 0.5);
   EXPECT_LT(cb, std::acos(-1.0) / 4.0);
+}
+
+// --- K-vertex (toughness storage, seed 4.5) --------------------------------
+
+// Seed 4.5: T0 = 1 MPa on joints of L = 0.5 m, K_IC = 0.886 MPa m^0.5 (eq. 4.13).
+constexpr double kKic = 0.886e6;
+
+KgdToughnessSolution k_at(double t, double kic = kKic) { return kgd_toughness_storage(kE, kNu, kic, kQ0, t); }
+
+TEST(AnalyticalKgdToughness, PublishedClosedForms) {
+  // Garagash & Detournay 2005 (K-vertex, exact): l = (2 / pi^(2/3)) (E' Q0 t / K')^(2/3),
+  // w0 = pi^(-1/3) (K'/E')^(2/3) (Q0 t)^(1/3) = 0.6828 (...), p0 = (pi^(1/3) / 8) (K'^4 / (E' Q0 t))^(1/3).
+  // The seed's four-digit constants agree with the exact ones to their rounding (< 3e-4).
+  const double pi = std::acos(-1.0);
+  for (double t : {0.5, 1.0, 10.0}) {
+    const KgdToughnessSolution s = k_at(t);
+    const double Ep = s.plane_strain_modulus_Pa, Kp = s.scaled_toughness_Pa_sqrt_m;
+    EXPECT_NEAR(s.half_length_m / (2.0 / std::cbrt(pi * pi) * std::pow(Ep * kQ0 * t / Kp, 2.0 / 3.0)), 1.0, 3e-4);
+    EXPECT_NEAR(s.inlet_width_m / (0.6828 * std::pow(Kp / Ep, 2.0 / 3.0) * std::cbrt(kQ0 * t)), 1.0, 3e-4);
+    EXPECT_NEAR(s.inlet_width_m / (std::pow(Kp / Ep, 2.0 / 3.0) * std::cbrt(kQ0 * t) / std::cbrt(pi)), 1.0, 3e-4);
+    EXPECT_NEAR(s.inlet_net_pressure_Pa / (std::cbrt(pi) / 8.0 * std::cbrt(std::pow(Kp, 4) / (Ep * kQ0 * t))), 1.0,
+                3e-4);
+  }
+  EXPECT_NEAR(scaled_toughness(1.0), std::sqrt(32.0 / pi), 1e-12);
+}
+
+TEST(AnalyticalKgdToughness, UniformPressureCrackMeetsToughnessAndVolume) {
+  // Independent of the seed's constants: a crack of half-length l under uniform net
+  // pressure p has K_I = p sqrt(pi l), inlet opening 4 p l / E' and volume 2 pi p l^2 / E'.
+  // The K-vertex is the crack with K_I = K_IC holding the injected volume Q0 t.
+  const double pi = std::acos(-1.0);
+  for (double t : {0.5, 2.0, 10.0}) {
+    const KgdToughnessSolution s = k_at(t);
+    const double Ep = s.plane_strain_modulus_Pa, l = s.half_length_m, p = s.inlet_net_pressure_Pa;
+    EXPECT_NEAR(p * std::sqrt(pi * l) / kKic, 1.0, 3e-4) << "t = " << t;
+    EXPECT_NEAR(2.0 * pi * p * l * l / Ep / (kQ0 * t), 1.0, 3e-4) << "t = " << t;
+    EXPECT_NEAR(4.0 * p * l / Ep / s.inlet_width_m, 1.0, 3e-4) << "t = " << t;
+  }
+}
+
+TEST(AnalyticalKgdToughness, HandComputedValuesAtTenSeconds) {
+  // By hand: E' = 26.667 GPa, K' = 3.1915 * 0.886e6 = 2.8277e6 Pa m^0.5,
+  // E' Q0 t / K' = 26.667e9 * 0.04 / 2.8277e6 = 377.22 m^(3/2), psi = 377.22^(2/3) = 52.21 m, l = 48.68 m,
+  // w0 = 0.6828 * (1.0604e-4)^(2/3) * 0.04^(1/3) = 0.5233 mm, p0 = 0.1831 * (K'^4 / 1.0667e9)^(1/3) = 71.65 kPa.
+  const KgdToughnessSolution s = k_at(10.0);
+  EXPECT_NEAR(s.scaled_toughness_Pa_sqrt_m, 2.8277e6, 1e2);
+  EXPECT_NEAR(s.psi_m, 52.21, 0.01);
+  EXPECT_NEAR(s.half_length_m, 48.68, 0.01);
+  EXPECT_NEAR(s.inlet_width_m, 0.5233e-3, 0.0005e-3);
+  EXPECT_NEAR(s.inlet_net_pressure_Pa, 71.65e3, 0.05e3);
+}
+
+TEST(AnalyticalKgdToughness, GrowthLawsAndMatchedToughness) {
+  const KgdToughnessSolution a = k_at(1.0), b = k_at(8.0);
+  EXPECT_NEAR(b.half_length_m / a.half_length_m, 4.0, 1e-12);
+  EXPECT_NEAR(b.inlet_width_m / a.inlet_width_m, 2.0, 1e-12);
+  EXPECT_NEAR(b.inlet_net_pressure_Pa / a.inlet_net_pressure_Pa, 0.5, 1e-12);
+  // Eq. 4.13 and erratum 7: T0 = 1 and 5 MPa on 0.5 m joints are 0.886 and 4.43 MPa m^0.5,
+  // the same toughness as 0.707 and 3.536 MPa on 1 m joints.
+  EXPECT_NEAR(toughness_of_tensile_strength(1.0e6, 0.5), 0.886e6, 0.001e6);
+  EXPECT_NEAR(toughness_of_tensile_strength(5.0e6, 0.5), 4.43e6, 0.002e6);
+  EXPECT_NEAR(toughness_of_tensile_strength(0.707e6, 1.0), 0.886e6, 0.001e6);
+  EXPECT_NEAR(toughness_of_tensile_strength(3.536e6, 1.0), 4.43e6, 0.002e6);
 }
 
 }  // namespace

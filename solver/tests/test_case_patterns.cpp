@@ -230,7 +230,7 @@ TEST(BreakablePatterns, KeyErrors) {
   expect_text_error(head + "  - {" + region + ", spacing: 2}\n", 3,
                     "breakable_patterns[0].spacing",
                     "unknown key; allowed keys: name, region, cell_size, origin, lines, "
-                    "breakable, tensile_strength, cohesion, friction_angle");
+                    "breakable, tensile_strength, fracture_toughness, cohesion, friction_angle");
   expect_text_error(head + "  - {region: {xmin: 4, xmax: -4, ymin: 0, ymax: 1}}\n", 3,
                     "breakable_patterns[0].region.xmax", "must be > xmin");
   expect_text_error("breakable_patterns: {cell_size: 2}\n", 1, "breakable_patterns",

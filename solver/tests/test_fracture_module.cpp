@@ -32,10 +32,32 @@ TEST(FractureCriteria, BondStrengthFromJointProperties) {
   p.tensile_strength_Pa = 3e6;
   p.cohesion_Pa = 5e6;
   p.friction_angle_rad = std::numbers::pi / 6.0;
-  const BondStrength s = bond_strength(p);
+  const BondStrength s = bond_strength(p, 0.5);
   EXPECT_EQ(s.tensile_strength_Pa, 3e6);
   EXPECT_EQ(s.cohesion_Pa, 5e6);
   EXPECT_EQ(s.tan_friction, std::tan(std::numbers::pi / 6.0));
+  EXPECT_EQ(bond_strength(p, 7.0).tensile_strength_Pa, 3e6);  // without a toughness the length is not used
+}
+
+TEST(FractureCriteria, BondStrengthFromFractureToughnessAndJointLength) {
+  // Seed eq. 4.13: K_IC = T0 sqrt(pi L / 2). K_IC = 0.886 MPa m^0.5 (seed 4.5) gives
+  // T0 = 1 MPa on a joint of 0.5 m and 0.707 MPa on one of 1 m; the toughness replaces
+  // the tensile strength, cohesion and friction are kept.
+  mesh::JointProperties p;
+  p.tensile_strength_Pa = 9e6;
+  p.cohesion_Pa = 5e6;
+  p.friction_angle_rad = std::numbers::pi / 6.0;
+  p.fracture_toughness_Pa_sqrt_m = 0.886e6;
+  EXPECT_NEAR(bond_strength(p, 0.5).tensile_strength_Pa, 1.0e6, 0.001e6);
+  EXPECT_NEAR(bond_strength(p, 1.0).tensile_strength_Pa, 0.707e6, 0.001e6);
+  EXPECT_EQ(bond_strength(p, 1.0).cohesion_Pa, 5e6);
+  EXPECT_EQ(bond_strength(p, 1.0).tan_friction, std::tan(std::numbers::pi / 6.0));
+  // The matched pair of erratum 7 (docs/seed_errata.md): 4.43 MPa m^0.5 is T0 = 5 MPa at
+  // L = 0.5 m and 3.536 MPa at L = 1 m; and the inverse relation holds exactly.
+  EXPECT_NEAR(tensile_strength_from_toughness(4.43e6, 0.5), 5.0e6, 0.002e6);
+  EXPECT_NEAR(tensile_strength_from_toughness(4.43e6, 1.0), 3.536e6, 0.002e6);
+  const double t0 = tensile_strength_from_toughness(2.0e6, 0.8);
+  EXPECT_NEAR(t0 * std::sqrt(std::numbers::pi * 0.8 / 2.0), 2.0e6, 1e-9 * 2.0e6);
 }
 
 TEST(FractureCriteria, TensionJustBelowAndAboveTheTensileLimit) {
