@@ -60,7 +60,11 @@ int run_command(int argc, char** argv, bool check_only) {
   const hfdda::io::CaseConfig config = hfdda::io::load_case_file(case_file);
   hfdda::simulation::Model model = hfdda::simulation::build_model(config);
   const auto& system = *model.system;
-  if (check_only || !quiet)
+  if ((check_only || !quiet) && config.load_ramp)
+    std::fprintf(stderr, "%s: %d blocks, %zu joints, %zu points, load ramp (%s), one static step of %g s per level\n",
+                 case_file.c_str(), system.n_blocks(), system.mesh().joints.size(), system.mesh().points.size(),
+                 config.load_ramp->history.empty() ? "uniform" : "history", config.time.dt_s);
+  else if (check_only || !quiet)
     std::fprintf(stderr, "%s: %d blocks, %zu joints, %zu points, %d steps of %g s\n", case_file.c_str(),
                  system.n_blocks(), system.mesh().joints.size(), system.mesh().points.size(),
                  static_cast<int>(config.time.end_time_s / config.time.dt_s + 0.5), config.time.dt_s);

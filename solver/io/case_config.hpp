@@ -153,9 +153,9 @@ struct LoadRampConfig {
   std::optional<double> increment_Pa;  ///< s between levels (uniform ramp)
   std::optional<double> maximum_Pa;    ///< largest s (uniform ramp)
   std::vector<Vec2> history;           ///< (t [s], s [Pa]) points, t increasing (instead of the ramp)
-  /// Uniform ramp: predict the first failure from the linear response of two levels and
-  /// jump to just below it, instead of climbing there level by level.
-  bool find_first_failure = true;
+  /// Uniform ramp: from two levels without a failure, predict the next failure from the
+  /// linear response and jump to just below it, instead of climbing there level by level.
+  bool predict_failures = true;
   /// "none", "broken_fraction" (the broken length of `stop_joints` exceeds
   /// `stop_fraction` of their length) or "failed_both_sides" (a joint away from the
   /// crack has failed on both sides of `crack_centre` along `crack_direction`).

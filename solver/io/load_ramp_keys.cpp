@@ -69,11 +69,11 @@ const Table<LoadRampConfig>& load_ramp_table() {
        history_list({"history", "s, Pa", "",
                      "piecewise-linear s(t) instead of start/increment/maximum, sampled at t = dt, 2 dt, "
                      "... up to its last time"}),
-       boolean({"find_first_failure", "", "",
-                "uniform ramp: from two levels below any failure, predict the first failure from the "
-                "linear response and go on from just below it (2 increments or 1 %, the larger, "
-                "below); the levels after it are climbed one increment at a time"},
-               &LoadRampConfig::find_first_failure),
+       boolean({"predict_failures", "", "",
+                "uniform ramp: between failures the response is linear, so from two levels without a "
+                "failure predict the next one and go on from just below it (2 increments or 1 %, the "
+                "larger); from there every level is solved, one increment at a time"},
+               &LoadRampConfig::predict_failures),
        choice({"stop_when", "", "§4.2: 75 % of the half-length open; §4.4: first joint failed on both sides",
                "none, broken_fraction or failed_both_sides"},
               &LoadRampConfig::stop_when,

@@ -78,6 +78,10 @@ std::vector<double> LoadRamp::margins(const dda::BlockSystem& system) const {
   m.reserve(bond_contacts_.size());
   const auto& points = system.mesh().points;
   for (int ci : bond_contacts_) {
+    if (!contacts[ci].bonded) {  // broken since: no limit left to reach
+      m.push_back(std::numeric_limits<double>::infinity());
+      continue;
+    }
     fracture::Bond b;
     b.length_m = contacts[ci].length_m;
     std::tie(b.normal_N, b.shear_N) = system.contact_forces(ci);
@@ -100,15 +104,18 @@ void LoadRamp::try_jump(const dda::BlockSystem& system) {
   double predicted = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < now.size(); ++i)
     predicted = std::min(predicted, fracture::level_at_zero_margin(margins_level_, bond_margins_[i], current_level_, now[i]));
-  have_margins_ = false;  // one prediction per run: the first two levels
+  bond_margins_ = std::move(now);  // the next prediction may start from this level
+  margins_level_ = current_level_;
   if (!std::isfinite(predicted)) return;
-  outcome_.predicted_first_failure_Pa = predicted;
+  if (std::isnan(outcome_.first_failure_Pa) && std::isnan(outcome_.predicted_first_failure_Pa))
+    outcome_.predicted_first_failure_Pa = predicted;
   const double increment = *config_.increment_Pa;
   const double target = predicted - std::max(2.0 * increment, 0.01 * std::abs(predicted));
   const double k = std::floor((target - config_.start_Pa.value_or(0.0)) / increment);
   if (k > static_cast<double>(next_index_) && k < static_cast<double>(n_levels_)) {
     next_index_ = static_cast<long long>(k);
     jumped_this_step_ = true;  // the next step is the jump
+    ++outcome_.jumps;
   }
 }
 
@@ -143,12 +150,15 @@ void LoadRamp::after_step(const dda::BlockSystem& system, int step, int bonds_br
   jumped_this_step_ = false;
   ++outcome_.levels_solved;
   outcome_.last_level_Pa = current_level_;
-  if (was_jump) outcome_.jumped_to_Pa = current_level_;
+  if (was_jump && std::isnan(outcome_.jumped_to_Pa)) outcome_.jumped_to_Pa = current_level_;
+  if (bonds_broken_in_step > 0) {
+    have_margins_ = false;  // the response changed: two new levels before the next prediction
+    if (was_jump) ++outcome_.failures_at_jump;
+  }
   if (bonds_broken_in_step > 0 && std::isnan(outcome_.first_failure_Pa)) {
     outcome_.first_failure_Pa = current_level_;
     outcome_.first_failure_step = step;
     outcome_.first_failure_at_jump = was_jump;
-    have_margins_ = false;
   }
   if (std::isnan(outcome_.first_joint_failure_Pa) && bonds_broken_in_step > 0) {
     const auto& contacts = system.contacts();
@@ -166,9 +176,7 @@ void LoadRamp::after_step(const dda::BlockSystem& system, int step, int bonds_br
     outcome_.stop_step = step;
     return;
   }
-  const bool may_jump = uniform_ && config_.find_first_failure && std::isnan(outcome_.first_failure_Pa) &&
-                        std::isnan(outcome_.predicted_first_failure_Pa);
-  if (may_jump) try_jump(system);
+  if (uniform_ && config_.predict_failures && bonds_broken_in_step == 0) try_jump(system);
 }
 
 }  // namespace hfdda::simulation

@@ -3,13 +3,13 @@
 // level each step applies, the skip to just below the first failure, the stop
 // condition, and what the run records about them.
 //
-// Before any bond fails, a static DDA system is linear in its loads (the joints are
-// bonded, open crack faces stay open): the margin of every intact bond to its limit
-// (fracture::failure_margin_N) is then linear in the level, so two levels predict the
-// first failure. The ramp goes on from 2 increments (or 1 %, the larger) below the
-// prediction; every level from there on is solved, so the recorded first-failure level
-// has the resolution of one increment, as in the seed. If a bond fails at the level
-// reached by the jump itself, the prediction was not safe and the outcome says so.
+// Between two bond failures a static DDA system is linear in its loads (intact joints
+// stay bonded, open crack faces stay open): the margin of every intact bond to its limit
+// (fracture::failure_margin_N) is then linear in the level, so two levels without a
+// failure predict the next one. The ramp goes on from 2 increments (or 1 %, the larger)
+// below the prediction; every level from there on is solved, so each failure level has
+// the resolution of one increment, as in the seed's ramps. If a bond fails at a level
+// reached by a jump itself, the prediction was not safe there and the outcome says so.
 
 #include <limits>
 #include <string>
@@ -24,14 +24,16 @@ struct LoadRampOutcome {
   static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   int levels_solved = 0;
   double last_level_Pa = kNone;
-  double predicted_first_failure_Pa = kNone;  ///< linear prediction (NaN: none made)
-  double jumped_to_Pa = kNone;                ///< level the ramp jumped to (NaN: no jump)
+  double predicted_first_failure_Pa = kNone;  ///< linear prediction of the first failure (NaN: none made)
+  double jumped_to_Pa = kNone;                ///< level of the first jump (NaN: no jump)
   double first_failure_Pa = kNone;            ///< level of the first bond failure (NaN: none)
   int first_failure_step = 0;
   /// Level at which a whole joint (both ends) not initially open first failed (NaN: none);
   /// the seed's "initiation" of a crack whose tip half-joint may have failed earlier.
   double first_joint_failure_Pa = kNone;
   bool first_failure_at_jump = false;  ///< it failed at the jumped-to level: resolution not guaranteed
+  int jumps = 0;                       ///< jumps made over linear stretches
+  int failures_at_jump = 0;            ///< levels reached by a jump at which bonds failed (should be 0)
   bool stop_reached = false;
   double stop_Pa = kNone;              ///< level at which the stop condition was met
   int stop_step = 0;

@@ -83,6 +83,8 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
                       {"first_failure_Pa", number(o.first_failure_Pa)},
                       {"first_failure_step", o.first_failure_step},
                       {"first_failure_at_jump", o.first_failure_at_jump},
+                      {"jumps", o.jumps},
+                      {"failures_at_jump", o.failures_at_jump},
                       {"first_joint_failure_Pa", number(o.first_joint_failure_Pa)},
                       {"stop_when", model.config.load_ramp->stop_when},
                       {"stop_reached", o.stop_reached},

@@ -54,7 +54,7 @@ TEST(LoadRampKeys, ParsesTheRampAndItsStop) {
   EXPECT_EQ(*c.load_ramp->increment_Pa, 1.0e3);
   EXPECT_EQ(c.load_ramp->stop_when, "broken_fraction");
   EXPECT_EQ(c.load_ramp->stop_fraction, 0.75);
-  EXPECT_TRUE(c.load_ramp->find_first_failure);
+  EXPECT_TRUE(c.load_ramp->predict_failures);
 }
 
 TEST(LoadRampKeys, RefusesWhatCannotMeanAnything) {
@@ -99,13 +99,14 @@ TEST(LoadRampRun, UniformTensionBreaksTheLineAtItsStrengthAfterOneJump) {
   EXPECT_EQ(o.stop_Pa, o.first_failure_Pa);                   // all ties break together
   EXPECT_EQ(o.first_joint_failure_Pa, o.first_failure_Pa);
   EXPECT_LT(o.levels_solved, 10);                             // not 100 levels
+  EXPECT_EQ(o.failures_at_jump, 0);
   EXPECT_EQ(result.record.series("load_level_Pa").back(), o.stop_Pa);
 }
 
 TEST(LoadRampRun, WithoutThePredictionEveryLevelIsSolvedAndTheAnswerIsTheSame) {
   simulation::Model model;
   std::string text = kRamp;
-  text.replace(text.find("  increment: 1.0e3"), 18, "  increment: 1.0e4\n  find_first_failure: false");
+  text.replace(text.find("  increment: 1.0e3"), 18, "  increment: 1.0e4\n  predict_failures: false");
   const auto result = run_text(text, model, "climb");
   ASSERT_TRUE(result.completed) << result.message;
   const auto& o = model.ramp->outcome();

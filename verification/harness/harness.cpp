@@ -142,6 +142,15 @@ Study load_study(const std::string& path) {
     for (const auto& kv : v) {
       const std::string key = kv.first.as<std::string>();
       if (key == "name" || key == "case" || key == "label" || key == "tiers" || key == "vtu") continue;
+      if (key == "set") {
+        if (!kv.second.IsMap()) study_error(s, kv.second, "variant key 'set' must be a map of case-file keys");
+        YAML::Emitter text;
+        text << YAML::BeginMap;
+        for (const auto& entry : kv.second) text << YAML::Key << entry.first << YAML::Value << entry.second;
+        text << YAML::EndMap;
+        spec.overrides_yaml = std::string(text.c_str()) + "\n";
+        continue;
+      }
       if (!kv.second.IsScalar()) study_error(s, kv.second, "variant attribute '" + key + "' must be a scalar");
       spec.attributes[key] = kv.second.as<std::string>();
     }
@@ -381,7 +390,17 @@ VariantOutcome run_variant(const VariantSpec& spec, const CaseDefinition& def, c
   fs::remove_all(run_dir);  // never mix with a previous run's output
   simulation::Model model;
   try {
-    r.config = io::load_case_file(case_dir + "/" + spec.case_file);
+    std::string case_path = case_dir + "/" + spec.case_file;
+    if (!spec.overrides_yaml.empty()) {
+      // The variant as a case file of its own, which a user can run with `hfdda run`.
+      fs::create_directories(run_dir);
+      const std::string generated = run_dir + "/case.yaml";
+      io::write_file_atomically(generated, "# Variant '" + spec.name + "' of study.yaml: " + spec.case_file +
+                                               " with the variant's `set:` keys.\nextends: " +
+                                               fs::absolute(case_path).string() + "\n" + spec.overrides_yaml);
+      case_path = generated;
+    }
+    r.config = io::load_case_file(case_path);
     if (def.validate) def.validate(*r.config, spec);
     model = simulation::build_model(*r.config);
     r.built = true;

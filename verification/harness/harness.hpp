@@ -36,6 +36,9 @@ nlohmann::json finite_or_null(double v);
 /// `tiers`, `vtu` (tiers that write VTU files), and any other scalar keys as attributes.
 struct VariantSpec {
   std::string name, case_file, label;
+  /// `set:` of the variant, as YAML text: case-file keys that override the case file (the
+  /// runner writes runs/<variant>/case.yaml, which `extends` it, and runs that file).
+  std::string overrides_yaml;
   std::vector<std::string> tiers, vtu_tiers;
   std::map<std::string, std::string> attributes;
 

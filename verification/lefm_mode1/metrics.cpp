@@ -1,0 +1,94 @@
+// Metrics of the Mode I LEFM study (seed 4.2, Figure 4.6): the far-field tension at
+// which the crack fails completely (the load ramp's stop level: more than 75 % of the
+// 48 m path broken), against
+//   eq. 4.14 (singular near-tip field):  s_f = T0 sqrt(L / 2a)
+//   exact Griffith field (erratum 6):    s_f = T0 sqrt(L / (2a + L))
+// with the level of the first bond failure (the tip half of the first joint), of the
+// first whole-joint failure, and the spread to complete failure. Variant attributes
+// a_m, L_m, T0_Pa and increment_Pa state the parameters; validate() checks them against
+// the case. Writes failure_stress.csv (one row per variant) for plot.py.
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "harness.hpp"
+
+namespace hfdda::verification {
+namespace {
+
+double exact_field_stress(double t0, double a, double l) { return t0 * std::sqrt(l / (2.0 * a + l)); }
+double near_tip_stress(double t0, double a, double l) { return a > 0.0 ? t0 * std::sqrt(l / (2.0 * a)) : kNaN; }
+
+void validate(const io::CaseConfig& c, const VariantSpec& v) {
+  if (!c.load_ramp) throw std::runtime_error("the case has no load_ramp");
+  if (std::abs(c.joints.tensile_strength_Pa - v.number("T0_Pa")) > 1e-9 * v.number("T0_Pa"))
+    throw std::runtime_error("joints.tensile_strength differs from the variant's T0_Pa");
+  if (std::abs(*c.load_ramp->increment_Pa - v.number("increment_Pa")) > 1e-9 * v.number("increment_Pa"))
+    throw std::runtime_error("load_ramp.increment differs from the variant's increment_Pa");
+  double crack = 0.0;
+  for (const auto& f : c.fractures)
+    if (f.initially_open) crack = 0.5 * (f.to - f.from).norm();
+  if (std::abs(crack - v.number("a_m")) > 1e-9) throw std::runtime_error("the open crack's half-length is not a_m");
+}
+
+Metrics variant_metrics(const VariantRun& r) {
+  Metrics m;
+  const VariantSpec& v = *r.variant;
+  const double a = v.number("a_m"), l = v.number("L_m"), t0 = v.number("T0_Pa"), inc = v.number("increment_Pa");
+  const double exact = exact_field_stress(t0, a, l), near_tip = near_tip_stress(t0, a, l);
+  m.numbers["exact_field_Pa"] = exact;
+  m.numbers["near_tip_Pa"] = near_tip;
+  m.numbers["a_at_least_2L"] = a >= 2.0 * l - 1e-12 ? 1.0 : 0.0;
+  for (const char* k : {"failure_Pa", "first_failure_Pa", "first_joint_failure_Pa", "predicted_first_failure_Pa",
+                        "error_exact_field", "abs_error_exact_field", "error_near_tip", "spread_Pa",
+                        "a0_error_increments", "stop_reached", "first_failure_at_jump", "levels_solved"})
+    m.numbers[k] = kNaN;
+  if (!r.model || !r.model->ramp) {
+    m.summary = "not run";
+    return m;
+  }
+  const simulation::LoadRampOutcome& o = r.model->ramp->outcome();
+  const double failure = o.stop_reached ? o.stop_Pa : kNaN;
+  m.numbers["failure_Pa"] = failure;
+  m.numbers["first_failure_Pa"] = o.first_failure_Pa;
+  m.numbers["first_joint_failure_Pa"] = o.first_joint_failure_Pa;
+  m.numbers["predicted_first_failure_Pa"] = o.predicted_first_failure_Pa;
+  m.numbers["error_exact_field"] = failure / exact - 1.0;
+  m.numbers["abs_error_exact_field"] = std::abs(failure / exact - 1.0);
+  m.numbers["error_near_tip"] = failure / near_tip - 1.0;
+  m.numbers["spread_Pa"] = failure - o.first_joint_failure_Pa;
+  m.numbers["a0_error_increments"] = std::abs(failure - t0) / inc;
+  m.numbers["stop_reached"] = o.stop_reached ? 1.0 : 0.0;
+  m.numbers["first_failure_at_jump"] = o.first_failure_at_jump ? 1.0 : 0.0;
+  m.numbers["levels_solved"] = o.levels_solved;
+  for (const auto& [k, value] : m.numbers) m.json[k] = finite_or_null(value);
+  char line[200];
+  std::snprintf(line, sizeof line, "s_f %.0f Pa (exact field %.0f, %+.2f %%), first bond %.0f, first joint %.0f Pa",
+                failure, exact, 100.0 * (failure / exact - 1.0), o.first_failure_Pa, o.first_joint_failure_Pa);
+  m.summary = line;
+  return m;
+}
+
+void study_metrics(StudyOutcome& s) {
+  std::ostringstream csv;
+  csv << "variant,a_m,L_m,T0_Pa,increment_Pa,failure_Pa,first_failure_Pa,first_joint_failure_Pa,"
+         "exact_field_Pa,near_tip_Pa,wall_s\n";
+  csv.precision(10);
+  for (const VariantOutcome& v : s.variants) {
+    const auto& n = v.metrics.numbers;
+    csv << v.variant().name << ',' << v.variant().number("a_m") << ',' << v.variant().number("L_m") << ','
+        << v.variant().number("T0_Pa") << ',' << v.variant().number("increment_Pa") << ',' << n.at("failure_Pa")
+        << ',' << n.at("first_failure_Pa") << ',' << n.at("first_joint_failure_Pa") << ',' << n.at("exact_field_Pa")
+        << ',' << n.at("near_tip_Pa") << ',' << v.run.run.wall_seconds << '\n';
+  }
+  s.metrics.files["failure_stress.csv"] = csv.str();
+}
+
+}  // namespace
+
+CaseDefinition case_definition() { return {validate, variant_metrics, study_metrics}; }
+
+}  // namespace hfdda::verification

@@ -1,0 +1,56 @@
+"""Figure of the Mode I LEFM study (seed Figure 4.6).
+
+Usage: /usr/bin/python3 plot.py RESULT_DIR
+(reads failure_stress.csv written there by verify_lefm_mode1)
+
+One panel per tensile strength T0, as in the seed: the far-field tension at complete
+failure against the initial half-length a, for L = 0.5 and 1 m, with the exact-field
+relation T0 sqrt(L / (2a + L)) (erratum 6) and the seed's eq. 4.14, T0 sqrt(L / 2a).
+Open markers: the level at which the first whole joint failed.
+"""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def main(result_dir):
+    with open(os.path.join(result_dir, "failure_stress.csv")) as f:
+        rows = list(csv.DictReader(f))
+    strengths = sorted({float(r["T0_Pa"]) for r in rows})
+    fig, axes = plt.subplots(1, len(strengths), figsize=(6 * len(strengths), 4.5), squeeze=False)
+    for ax, t0 in zip(axes[0], strengths):
+        for length, colour in ((0.5, "tab:blue"), (1.0, "tab:red")):
+            sel = sorted((r for r in rows if float(r["T0_Pa"]) == t0 and float(r["L_m"]) == length),
+                         key=lambda r: float(r["a_m"]))
+            if not sel:
+                continue
+            a = np.array([float(r["a_m"]) for r in sel])
+            fail = np.array([float(r["failure_Pa"]) if r["failure_Pa"] not in ("nan", "") else np.nan for r in sel])
+            joint = np.array([float(r["first_joint_failure_Pa"]) if r["first_joint_failure_Pa"] not in ("nan", "")
+                              else np.nan for r in sel])
+            ax.plot(a, fail / 1e6, "o", color=colour, label=f"DDA, L = {length} m: complete failure")
+            ax.plot(a, joint / 1e6, "o", mfc="none", color=colour, label=f"DDA, L = {length} m: first joint")
+            aa = np.linspace(0.0, 5.0, 201)
+            ax.plot(aa, t0 * np.sqrt(length / (2 * aa + length)) / 1e6, "-", color=colour,
+                    label=f"T0 sqrt(L/(2a+L)), L = {length} m")
+            ap = aa[aa > 0.2]
+            ax.plot(ap, t0 * np.sqrt(length / (2 * ap)) / 1e6, ":", color=colour, label=f"eq. 4.14, L = {length} m")
+        ax.set_title(f"T0 = {t0 / 1e6:g} MPa")
+        ax.set_xlabel("initial half-length a [m]")
+        ax.set_ylabel("far-field tension at failure [MPa]")
+        ax.set_ylim(0, 1.2 * t0 / 1e6)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Mode I: failure stress of a centre crack (seed Fig. 4.6)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(result_dir, "lefm_mode1.png"), dpi=110)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
