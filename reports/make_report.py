@@ -338,6 +338,18 @@ def render_case(case: dict, summ: dict, plot_result, figures: list[tuple[str, st
     return lines
 
 
+def run_time_text(case: dict) -> str:
+    """Wall time of the case's runner (result.json `wall_s`), else the sum of its runs'."""
+    seconds = case.get("wall_s")
+    if not isinstance(seconds, (int, float)):
+        runs = [m.get("wall_s") for m in case.get("metrics", {}).values() if isinstance(m, dict)]
+        runs = [r for r in runs if isinstance(r, (int, float))]
+        seconds = sum(runs) if runs else None
+    if seconds is None:
+        return "-"
+    return f"{seconds:.0f} s" if seconds < 120 else f"{seconds / 60:.1f} min"
+
+
 def write_report(results: Path, out: Path, source_dir: Path, python: str, junit_path: Path | None = None) -> int:
     out.mkdir(parents=True, exist_ok=True)
     fig_dir = out / "figures"
@@ -392,7 +404,7 @@ def write_report(results: Path, out: Path, source_dir: Path, python: str, junit_
         summary_rows.append([f"[{cell(str(case['case']))}](#{anchor(case['dir'])})",
                              cell(str(case.get("seed_section", ""))), cell(str(case.get("tier", ""))),
                              f"{MARK_OK if summ['ok'] else MARK_BAD} {status}",
-                             f"{summ['matched']}/{summ['total']}", fig_text])
+                             f"{summ['matched']}/{summ['total']}", run_time_text(case), fig_text])
         sections += render_case(case, summ, plot_result, figures)
 
     # Figures of cases no longer in the results would contradict the report: drop them.
@@ -403,7 +415,8 @@ def write_report(results: Path, out: Path, source_dir: Path, python: str, junit_
     lines = header + ["## Summary", "",
                       f"{n_ok} of {len(result_files)} case results pass. A check whose seed result is a "
                       "known failure (expected `fail`) counts as matched when it fails.", ""]
-    lines += table(["case", "seed section", "tier", "status", "checks as expected", "figures"], summary_rows)
+    lines += table(["case", "seed section", "tier", "status", "checks as expected", "run time", "figures"],
+                   summary_rows)
     lines.append("")
     lines += ctest_section
     lines += sections

@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -447,6 +448,7 @@ int run_harness(int argc, char** argv, const CaseDefinition& def) {
   }
   const std::string &tier = options->tier, &out_dir = options->out_dir;
   try {
+    const auto runner_start = std::chrono::steady_clock::now();
     if (!def.metrics) throw std::runtime_error("the case defines no metrics function");
     std::fprintf(stderr, "%s\n", dda::apply_thread_policy(dda::threads_from_environment()).c_str());
     const Study study = load_study(options->case_dir + "/study.yaml");
@@ -483,6 +485,7 @@ int run_harness(int argc, char** argv, const CaseDefinition& def) {
     result["title"] = study.title;
     result["seed_section"] = study.seed_section;
     result["tier"] = tier;
+    result["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - runner_start).count();
     const bool gating_match = record_checks(checks, result);
     const bool all_match = result["status"] == "pass";
     nlohmann::json& metrics = result["metrics"] = nlohmann::json::object();
