@@ -65,6 +65,10 @@ std::string prepare_output_directory(const std::string& dir, bool force, bool re
   const std::string checkpoint = hfdda::simulation::checkpoint_path(dir);
   if (restart) {
     if (!fs::is_regular_file(checkpoint, ec)) return "--restart: no checkpoint '" + checkpoint + "'";
+    // Temporary files of writes a kill interrupted (io::write_file_atomically's "NAME.tmp.PID").
+    for (const auto& entry : fs::recursive_directory_iterator(path, ec))
+      if (entry.is_regular_file(ec) && entry.path().filename().string().find(".tmp.") != std::string::npos)
+        fs::remove(entry.path(), ec);
   } else if (fs::is_directory(path, ec)) {
     bool previous = false;
     for (const char* name : {"summary.json", "history.csv", "checkpoint.bin", "joints", "vtu", "blocks.pvd"})

@@ -1,10 +1,12 @@
 #pragma once
 // Output contract of a run directory (later issues and users rely on it):
-//   summary.json              status, steps, wall time, solver statistics
+//   summary.json              status (completed, failed, interrupted), steps, wall time, statistics
 //   history.csv               one row per step
 //   joints/joints_NNNNNN.csv  per-joint state at output times; joints/joints_final.csv
 //   vtu/blocks_NNNNNN.vtu, vtu/joints_NNNNNN.vtu with blocks.pvd and joints.pvd series
-// Every file is written to a temporary name and renamed, so none is ever half-written.
+//   checkpoint.bin            state to restart from (simulation/checkpoint.hpp)
+// Every file is written to a temporary name and renamed, so none is ever half-written;
+// history.csv is created that way and then appended one whole line per write.
 
 #include <Eigen/Core>
 #include <fstream>
