@@ -1,23 +1,30 @@
 // hfdda: command-line front end.
-//   hfdda run CASE.yaml --out DIR [--quiet] [--threads N]   run a case, write the run directory
+//   hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--force | --restart]
 //   hfdda check CASE.yaml                      validate the case and build its mesh
-// Exit codes: 0 success, 1 the run stopped (no convergence), 2 bad input or usage.
+// Exit codes: 0 success, 1 the run stopped (no convergence), 2 bad input or usage,
+// 3 stopped by SIGINT/SIGTERM after a step, with a checkpoint to restart from.
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <string>
 
 #include "core/errors.hpp"
 #include "dda/thread_policy.hpp"
 #include "io/case_config.hpp"
+#include "simulation/checkpoint.hpp"
 #include "simulation/model.hpp"
 #include "simulation/run.hpp"
 
 namespace {
 
 constexpr const char* kUsage =
-    "usage: hfdda run CASE.yaml --out DIR [--quiet] [--threads N]\n"
+    "usage: hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--force | --restart]\n"
     "       hfdda check CASE.yaml\n"
     "       hfdda --help | --version\n"
     "\n"
@@ -25,28 +32,92 @@ constexpr const char* kUsage =
     "       DIR/summary.json, DIR/history.csv, DIR/joints/*.csv and DIR/vtu/*.vtu (+ .pvd).\n"
     "       Shows progress on a terminal; --quiet shows nothing but errors.\n"
     "       --threads N: threads of the sparse factorisation (default: HFDDA_THREADS, else 1).\n"
+    "       A DIR that holds a previous run is refused; --force empties it first.\n"
+    "       --checkpoint-every N: write DIR/checkpoint.bin every N steps (default 10; 0: never).\n"
+    "       SIGINT or SIGTERM: the current step is finished, a checkpoint written, exit 3.\n"
+    "       --restart: continue the run in DIR from its checkpoint (same case file), with\n"
+    "       the same results as a run that was never stopped.\n"
     "check  validates CASE.yaml and builds its mesh without writing anything.\n"
-    "Case-file keys: docs/case_file.md. Exit: 0 ok, 1 run stopped, 2 bad input.\n";
+    "Case-file keys: docs/case_file.md. Exit: 0 ok, 1 run stopped, 2 bad input or unusable DIR,\n"
+    "3 interrupted (checkpoint written).\n";
+
+volatile std::sig_atomic_t g_stop_requested = 0;
+
+/// First SIGINT/SIGTERM: finish the step, checkpoint, exit 3. A second one ends the
+/// process at once (the default action).
+extern "C" void on_stop_signal(int signal_number) {
+  g_stop_requested = 1;
+  std::signal(signal_number, SIG_DFL);
+}
 
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "hfdda: %s\n%s", message.c_str(), kUsage);
   return 2;
 }
 
+/// Makes DIR ready for a run; the reason if it cannot be used. A directory holding a
+/// previous run is refused unless `force` (then emptied); a restart needs its checkpoint.
+std::string prepare_output_directory(const std::string& dir, bool force, bool restart) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path path(dir);
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) return "output '" + dir + "' exists and is not a directory";
+  const std::string checkpoint = hfdda::simulation::checkpoint_path(dir);
+  if (restart) {
+    if (!fs::is_regular_file(checkpoint, ec)) return "--restart: no checkpoint '" + checkpoint + "'";
+    // Temporary files of writes a kill interrupted (io::write_file_atomically's "NAME.tmp.PID").
+    for (const auto& entry : fs::recursive_directory_iterator(path, ec))
+      if (entry.is_regular_file(ec) && entry.path().filename().string().find(".tmp.") != std::string::npos)
+        fs::remove(entry.path(), ec);
+  } else if (fs::is_directory(path, ec)) {
+    bool previous = false;
+    for (const char* name : {"summary.json", "history.csv", "checkpoint.bin", "joints", "vtu", "blocks.pvd"})
+      previous = previous || fs::exists(path / name, ec);
+    if (previous && !force)
+      return "output directory '" + dir +
+             "' holds a previous run; give --force to empty it first, or --restart to continue it";
+    if (previous)
+      for (const auto& entry : fs::directory_iterator(path, ec)) {
+        fs::remove_all(entry.path(), ec);
+        if (ec) return "cannot empty '" + dir + "': " + entry.path().string() + ": " + ec.message();
+      }
+  }
+  fs::create_directories(path, ec);
+  if (ec) return "cannot create output directory '" + dir + "': " + ec.message();
+  const std::string probe = dir + "/.hfdda-write-test." + std::to_string(::getpid());
+  std::FILE* file = std::fopen(probe.c_str(), "wb");
+  if (file == nullptr) return "output directory '" + dir + "' is not writable: " + std::strerror(errno);
+  std::fclose(file);
+  std::remove(probe.c_str());
+  return {};
+}
+
+bool whole_number(const std::string& value, int min) {
+  return !value.empty() && value.find_first_not_of("0123456789") == std::string::npos && value.size() <= 9 &&
+         std::stoi(value) >= min;
+}
+
 int run_command(int argc, char** argv, bool check_only) {
   std::string case_file, out_dir;
-  bool quiet = false;
+  bool quiet = false, force = false, restart = false;
+  int checkpoint_every = 10;
   int threads = hfdda::dda::threads_from_environment();
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--out" && i + 1 < argc) out_dir = argv[++i];
     else if (arg == "--threads" && i + 1 < argc) {
       const std::string value = argv[++i];
-      if (value.empty() || value.find_first_not_of("0123456789") != std::string::npos || value.size() > 4 ||
-          std::stoi(value) < 1)
+      if (!whole_number(value, 1) || value.size() > 4)
         return usage_error("--threads needs a whole number from 1 to 9999 (got '" + value + "')");
       threads = std::stoi(value);
     }
+    else if (arg == "--checkpoint-every" && i + 1 < argc) {
+      const std::string value = argv[++i];
+      if (!whole_number(value, 0)) return usage_error("--checkpoint-every needs a whole number >= 0 (got '" + value + "')");
+      checkpoint_every = std::stoi(value);
+    }
+    else if (arg == "--force") force = true;
+    else if (arg == "--restart") restart = true;
     else if (arg == "--quiet" || arg == "-q") quiet = true;
     else if (!arg.empty() && arg[0] == '-') return usage_error("unknown option '" + arg + "'");
     else if (case_file.empty()) case_file = arg;
@@ -54,10 +125,18 @@ int run_command(int argc, char** argv, bool check_only) {
   }
   if (case_file.empty()) return usage_error("no case file given");
   if (!check_only && out_dir.empty()) return usage_error("run needs --out DIR");
+  if (force && restart) return usage_error("--force and --restart exclude each other");
   const std::string thread_note = hfdda::dda::apply_thread_policy(threads);
   if (!quiet && !check_only) std::fprintf(stderr, "%s\n", thread_note.c_str());
 
   const hfdda::io::CaseConfig config = hfdda::io::load_case_file(case_file);
+  if (!check_only) {
+    const std::string problem = prepare_output_directory(out_dir, force, restart);
+    if (!problem.empty()) {
+      std::fprintf(stderr, "hfdda: %s\n", problem.c_str());
+      return 2;
+    }
+  }
   hfdda::simulation::Model model = hfdda::simulation::build_model(config);
   const auto& system = *model.system;
   if ((check_only || !quiet) && config.load_ramp)
@@ -70,7 +149,20 @@ int run_command(int argc, char** argv, bool check_only) {
                  static_cast<int>(config.time.end_time_s / config.time.dt_s + 0.5), config.time.dt_s);
   if (check_only) return 0;
 
-  const auto result = hfdda::simulation::run(model, {out_dir, quiet, true});
+  hfdda::simulation::RunOptions options{out_dir, quiet, true};
+  options.checkpoint_every = checkpoint_every;
+  options.restart = restart;
+  options.stop_requested = [] { return g_stop_requested != 0; };
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  const auto result = hfdda::simulation::run(model, options);
+  if (result.interrupted) {
+    std::fprintf(stderr, "hfdda: stopped after step %d (t = %g s) on a signal; checkpoint %s\n"
+                 "hfdda: continue with: hfdda run %s --out %s --restart\n",
+                 result.steps, result.time_s, hfdda::simulation::checkpoint_path(out_dir).c_str(), case_file.c_str(),
+                 out_dir.c_str());
+    return 3;
+  }
   if (!result.completed) {
     std::fprintf(stderr, "hfdda: run stopped at %s\nhfdda: outputs up to t = %g s are in %s\n", result.message.c_str(),
                  result.time_s, out_dir.c_str());

@@ -32,6 +32,11 @@
 #include "dda/contacts.hpp"
 #include "mesh/mesh.hpp"
 
+namespace hfdda {
+class BinaryWriter;
+class BinaryReader;
+}  // namespace hfdda
+
 namespace hfdda::dda {
 
 struct Material {
@@ -173,6 +178,13 @@ class BlockSystem {
   int total_vertex_vertex_activations() const { return total_vv_activations_; }
   const MechanicsSettings& settings() const { return settings_; }
   const std::vector<Material>& materials() const { return materials_; }
+
+  /// Committed state (blocks, contacts with their multipliers and shear references,
+  /// vertex-vertex activations, attachment positions, load level) for a checkpoint;
+  /// restore_state() into a system built from the same mesh and settings continues
+  /// bit for bit (block_system_state.cpp). Throws std::runtime_error on a mismatch.
+  void save_state(BinaryWriter& out) const;
+  void restore_state(BinaryReader& in);
 
   /// The assembled matrix of the last open-close iteration (tests, benchmarks).
   const BlockSparseMatrix& stiffness() const { return stiffness_; }

@@ -11,6 +11,11 @@
 #include "dda/contacts.hpp"
 #include "mesh/mesh.hpp"
 
+namespace hfdda {
+class BinaryWriter;
+class BinaryReader;
+}  // namespace hfdda
+
 namespace hfdda::dda {
 
 class ContactSet {
@@ -45,6 +50,10 @@ class ContactSet {
   void begin_step();
   /// Counts a state change of a contact in this step; returns the count so far.
   int count_flip(int contact) { return ++flips_[contact]; }
+  /// The contacts and K's block pairs, for a checkpoint (dda/block_system_state.cpp).
+  void save_state(BinaryWriter& out) const;
+  void restore_state(BinaryReader& in);
+
   /// Back to the contacts at the start of the step (K's pattern is kept).
   void roll_back() { contacts_ = at_start_; }
 

@@ -41,6 +41,11 @@
 #include <string>
 #include <vector>
 
+namespace hfdda {
+class BinaryWriter;
+class BinaryReader;
+}  // namespace hfdda
+
 namespace hfdda::fluid {
 
 struct FluidProperties {
@@ -130,6 +135,13 @@ class FlowNetwork {
   double mass_balance_error() const;
   const FluidProperties& fluid() const { return fluid_; }
   const FlowSettings& settings() const { return settings_; }
+
+  /// Everything a later step depends on (committed state, the warm start of the last
+  /// trial, the mass ledger), for a checkpoint; restore_state() into a network built
+  /// the same way continues bit for bit (flow_network_state.cpp). Throws
+  /// std::runtime_error on a mismatch.
+  void save_state(BinaryWriter& out) const;
+  void restore_state(BinaryReader& in);
 
  private:
   struct Evaluation;

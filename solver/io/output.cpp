@@ -390,6 +390,15 @@ void write_joints_vtu(const std::string& path, const std::vector<JointRow>& join
 
 void PvdSeries::add(double time_s, const std::string& relative_file) {
   entries_.emplace_back(time_s, relative_file);
+  write();
+}
+
+void PvdSeries::restore(Entries entries) {
+  entries_ = std::move(entries);
+  write();
+}
+
+void PvdSeries::write() const {
   std::string out;
   out += "<?xml version=\"1.0\"?>\n";
   out += "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
@@ -407,7 +416,23 @@ void PvdSeries::add(double time_s, const std::string& relative_file) {
 
 // ---------------------------------------------------------------------------
 
-HistoryCsv::HistoryCsv(const std::string& path, std::vector<std::string> columns)
+namespace {
+
+std::string csv_line(const std::vector<double>& values) {
+  std::string row;
+  row.reserve(values.size() * 25);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i > 0) row += ',';
+    append_number(row, values[i]);
+  }
+  row += '\n';
+  return row;
+}
+
+}  // namespace
+
+HistoryCsv::HistoryCsv(const std::string& path, std::vector<std::string> columns,
+                       const std::vector<std::vector<double>>& rows)
     : columns_(std::move(columns)) {
   if (columns_.empty()) throw std::invalid_argument("HistoryCsv '" + path + "': no columns");
   for (const std::string& c : columns_) {
@@ -416,20 +441,22 @@ HistoryCsv::HistoryCsv(const std::string& path, std::vector<std::string> columns
       throw std::invalid_argument("HistoryCsv '" + path + "': invalid column name '" + c + "'");
     }
   }
-  create_parent_directories(path);
+  std::string text;
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    if (i > 0) text += ',';
+    text += columns_[i];
+  }
+  text += '\n';
+  for (const std::vector<double>& row : rows) {
+    if (row.size() != columns_.size()) throw std::invalid_argument("HistoryCsv '" + path + "': row of the wrong size");
+    text += csv_line(row);
+  }
+  write_file_atomically(path, text);
   errno = 0;
-  out_.open(path, std::ios::out | std::ios::trunc);
+  out_.open(path, std::ios::out | std::ios::app);
   if (!out_) {
     throw std::runtime_error(system_error_text("cannot open", path, errno != 0 ? errno : EIO));
   }
-  std::string header;
-  for (std::size_t i = 0; i < columns_.size(); ++i) {
-    if (i > 0) header += ',';
-    header += columns_[i];
-  }
-  header += '\n';
-  out_ << header << std::flush;
-  if (!out_) throw std::runtime_error(system_error_text("cannot write", path, errno));
 }
 
 void HistoryCsv::append(const std::vector<double>& values) {
@@ -437,14 +464,10 @@ void HistoryCsv::append(const std::vector<double>& values) {
     throw std::invalid_argument("HistoryCsv::append: " + std::to_string(values.size()) +
                                 " values for " + std::to_string(columns_.size()) + " columns");
   }
-  std::string row;
-  row.reserve(values.size() * 25);
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (i > 0) row += ',';
-    append_number(row, values[i]);
-  }
-  row += '\n';
-  // Flushed per row so that a run that crashes or is killed keeps every finished step.
+  const std::string row = csv_line(values);
+  // One write of the whole line, flushed: a run that crashes or is killed keeps every
+  // finished step and no partial line (the stream's buffer is empty before each row and
+  // larger than a row, so the flush is a single write call).
   out_.write(row.data(), static_cast<std::streamsize>(row.size()));
   out_.flush();
   if (!out_) {

@@ -1,10 +1,12 @@
 #pragma once
 // Output contract of a run directory (later issues and users rely on it):
-//   summary.json              status, steps, wall time, solver statistics
+//   summary.json              status (completed, failed, interrupted), steps, wall time, statistics
 //   history.csv               one row per step
 //   joints/joints_NNNNNN.csv  per-joint state at output times; joints/joints_final.csv
 //   vtu/blocks_NNNNNN.vtu, vtu/joints_NNNNNN.vtu with blocks.pvd and joints.pvd series
-// Every file is written to a temporary name and renamed, so none is ever half-written.
+//   checkpoint.bin            state to restart from (simulation/checkpoint.hpp)
+// Every file is written to a temporary name and renamed, so none is ever half-written;
+// history.csv is created that way and then appended one whole line per write.
 
 #include <Eigen/Core>
 #include <fstream>
@@ -57,18 +59,27 @@ void write_joints_vtu(const std::string& path, const std::vector<JointRow>& join
 /// A ParaView .pvd collection: datasets with their times, rewritten atomically on add().
 class PvdSeries {
  public:
+  using Entries = std::vector<std::pair<double, std::string>>;
   explicit PvdSeries(std::string path) : path_(std::move(path)) {}
   void add(double time_s, const std::string& relative_file);
+  const Entries& entries() const { return entries_; }
+  /// Replaces the datasets (a restarted run) and rewrites the file.
+  void restore(Entries entries);
 
  private:
+  void write() const;
   std::string path_;
   std::vector<std::pair<double, std::string>> entries_;
 };
 
-/// history.csv: fixed columns, one row appended (and flushed) per step.
+/// history.csv: fixed columns, one row appended per step. The header and `rows` (the
+/// rows kept from before a restart) are written to a temporary file that is renamed;
+/// each later row is then appended with a single write and flushed, so a run that is
+/// killed leaves whole lines only.
 class HistoryCsv {
  public:
-  HistoryCsv(const std::string& path, std::vector<std::string> columns);
+  HistoryCsv(const std::string& path, std::vector<std::string> columns,
+             const std::vector<std::vector<double>>& rows = {});
   void append(const std::vector<double>& values);  ///< size must equal columns
 
  private:

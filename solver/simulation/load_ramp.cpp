@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <tuple>
+#include <type_traits>
 
+#include "core/binary_io.hpp"
 #include "fracture/fracture_criteria.hpp"
 
 namespace hfdda::simulation {
@@ -177,6 +180,36 @@ void LoadRamp::after_step(const dda::BlockSystem& system, int step, int bonds_br
     return;
   }
   if (uniform_ && config_.predict_failures && bonds_broken_in_step == 0) try_jump(system);
+}
+
+void LoadRamp::save_state(BinaryWriter& out) const {
+  static_assert(std::is_trivially_copyable_v<LoadRampOutcome>);
+  out.put_vector(bond_contacts_);
+  out.put_vector(stop_contacts_);
+  out.put(n_levels_);
+  out.put(next_index_);
+  out.put(current_level_);
+  out.put(jumped_this_step_);
+  out.put_vector(bond_margins_);
+  out.put(margins_level_);
+  out.put(have_margins_);
+  out.put(outcome_);
+}
+
+void LoadRamp::restore_state(BinaryReader& in) {
+  std::vector<int> bonds, stops;
+  in.get_vector(bonds);
+  in.get_vector(stops);
+  if (bonds != bond_contacts_ || stops != stop_contacts_)
+    throw std::runtime_error("checkpoint does not match the model: load ramp joints");
+  in.get(n_levels_);
+  in.get(next_index_);
+  in.get(current_level_);
+  in.get(jumped_this_step_);
+  in.get_vector(bond_margins_);
+  in.get(margins_level_);
+  in.get(have_margins_);
+  in.get(outcome_);
 }
 
 }  // namespace hfdda::simulation

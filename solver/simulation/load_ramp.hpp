@@ -18,6 +18,11 @@
 #include "dda/block_system.hpp"
 #include "io/case_config.hpp"
 
+namespace hfdda {
+class BinaryWriter;
+class BinaryReader;
+}  // namespace hfdda
+
 namespace hfdda::simulation {
 
 struct LoadRampOutcome {
@@ -56,6 +61,11 @@ class LoadRamp {
   const LoadRampOutcome& outcome() const { return outcome_; }
   /// Broken fraction of the stop joints now (0 without a broken_fraction stop).
   double broken_fraction() const { return outcome_.broken_fraction; }
+
+  /// The ramp's progress (next level, margins of the last level, outcome so far) for a
+  /// checkpoint; restore into a ramp built from the same case and mesh.
+  void save_state(BinaryWriter& out) const;
+  void restore_state(BinaryReader& in);
 
  private:
   std::vector<double> margins(const dda::BlockSystem& system) const;

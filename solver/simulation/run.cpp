@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "io/output.hpp"
+#include "simulation/checkpoint.hpp"
 #include "simulation/run_record.hpp"
 #include "simulation/snapshots.hpp"
 
@@ -53,7 +54,7 @@ struct OutputSeries {
 void write_summary(const Model& model, const RunOptions& options, const RunResult& r) {
   const auto& system = *model.system;
   nlohmann::json j;
-  j["status"] = r.completed ? "completed" : "failed";
+  j["status"] = r.completed ? "completed" : r.interrupted ? "interrupted" : "failed";
   j["message"] = r.message;
   j["case_file"] = model.config.file;
   j["title"] = model.config.title;
@@ -102,17 +103,37 @@ RunResult run(Model& model, const RunOptions& options) {
   const std::vector<OutputColumn> columns = history_columns(model);
   std::vector<std::string> names;
   for (const OutputColumn& c : columns) names.push_back(c.name);
-  io::HistoryCsv history(options.output_dir + "/history.csv", names);
   OutputSeries outputs(options.output_dir, options.write_vtu && model.config.output.vtu);
   const bool terminal = !options.quiet && isatty(fileno(stderr));
 
   RunResult result;
   result.record = RunRecord(names);
+  double wall_before = 0.0;  // wall time of the parts of the run before a restart
+  std::vector<std::vector<double>> kept_rows;
+  if (options.restart) {
+    RunProgress p = read_checkpoint(checkpoint_path(options.output_dir), model);
+    if (p.record.columns() != names)
+      throw std::runtime_error("checkpoint in '" + options.output_dir + "': its history columns differ");
+    result.steps = p.step;
+    result.time_s = p.time_s;
+    result.totals = p.totals;
+    result.record = std::move(p.record);
+    wall_before = p.wall_s;
+    for (std::size_t r = 0; r < result.record.rows(); ++r) kept_rows.push_back(result.record.row(r));
+    outputs.blocks_pvd.restore(std::move(p.blocks_pvd));
+    outputs.joints_pvd.restore(std::move(p.joints_pvd));
+  }
+  io::HistoryCsv history(options.output_dir + "/history.csv", names, kept_rows);
+  auto checkpoint = [&] {
+    RunProgress p{result.steps, result.time_s, wall_before + std::chrono::duration<double>(Clock::now() - start).count(),
+                  result.totals, result.record, outputs.blocks_pvd.entries(), outputs.joints_pvd.entries()};
+    write_checkpoint(checkpoint_path(options.output_dir), model, p);
+  };
   // Time stepping to end_time, or one step per load level of a load ramp.
   LoadRamp* ramp = model.ramp.get();
   const int n_steps = std::max(1, static_cast<int>(std::llround(time.end_time_s / time.dt_s)));
-  outputs.write(model, 0, 0.0, false);
-  for (int step = 1; ramp ? ramp->has_next() : step <= n_steps; ++step) {
+  if (!options.restart) outputs.write(model, 0, 0.0, false);
+  for (int step = result.steps + 1; ramp ? ramp->has_next() : step <= n_steps; ++step) {
     const double t = step * time.dt_s;
     if (ramp) model.system->set_load_level(ramp->next_level());
     StepStatistics st;
@@ -132,7 +153,7 @@ RunResult run(Model& model, const RunOptions& options) {
     result.steps = step;
     result.totals.accumulate(st);
     result.time_s = t;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    const double elapsed = wall_before + std::chrono::duration<double>(Clock::now() - start).count();
     const StepContext context = make_step_context(model, step, t, st, elapsed);
     std::vector<double> row;
     row.reserve(columns.size());
@@ -148,11 +169,19 @@ RunResult run(Model& model, const RunOptions& options) {
     else if (!options.quiet)
       std::fprintf(stderr, "step %d/%d t=%.6g s open-close=%d alm=%d elapsed=%.3f s\n", step, shown_steps, t,
                    st.open_close_iterations, st.alm_iterations, elapsed);
+    if (last) continue;
+    const bool stop = options.stop_requested && options.stop_requested();
+    if (stop || (options.checkpoint_every > 0 && step % options.checkpoint_every == 0)) checkpoint();
+    if (stop) {
+      result.interrupted = true;
+      result.message = "step " + std::to_string(step) + ": stopped on request; checkpoint written";
+      break;
+    }
   }
   if (terminal) std::fprintf(stderr, "\n");
   result.completed = result.message.empty();
-  if (!result.completed) outputs.write(model, result.steps, result.time_s, true);
-  result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (!result.completed && !result.interrupted) outputs.write(model, result.steps, result.time_s, true);
+  result.wall_seconds = wall_before + std::chrono::duration<double>(Clock::now() - start).count();
   write_summary(model, options, result);
   return result;
 }

@@ -14,10 +14,18 @@ struct RunOptions {
   std::string output_dir;   ///< run directory; created if missing
   bool quiet = false;       ///< no progress display
   bool write_vtu = true;    ///< overrides nothing when the case disables VTU
+  /// A checkpoint (simulation/checkpoint.hpp) every this many steps; 0: none, except
+  /// when a stop is requested (the CLI's default is 10).
+  int checkpoint_every = 0;
+  /// Continue from the checkpoint in output_dir (the model must be freshly built).
+  bool restart = false;
+  /// Asked after every step; true: write a checkpoint and stop (RunResult::interrupted).
+  std::function<bool()> stop_requested{};
 };
 
 struct RunResult {
-  bool completed = false;   ///< false: a step did not converge (outputs so far are kept)
+  bool completed = false;   ///< false: a step did not converge, or the run was interrupted
+  bool interrupted = false; ///< stopped on request after a step, with a checkpoint
   std::string message;      ///< why it stopped, if it did not complete
   int steps = 0;            ///< steps completed
   double time_s = 0.0;      ///< simulated time reached
@@ -30,7 +38,10 @@ struct RunResult {
 /// rows in RunResult::record; columns in simulation/run_record.hpp), joint CSV and VTU
 /// at output steps and at the end, and summary.json. A step that fails to converge
 /// ends the run with completed = false; everything up to the last committed step is
-/// written, including joints_final.csv.
+/// written, including joints_final.csv. With options.restart, the model, the run's
+/// totals, history rows and .pvd lists come from the checkpoint and the loop goes on
+/// from the step after it; history.csv is rewritten with the checkpoint's rows first.
+/// Throws std::runtime_error if the checkpoint cannot be used.
 RunResult run(Model& model, const RunOptions& options);
 
 }  // namespace hfdda::simulation
