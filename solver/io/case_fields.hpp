@@ -45,13 +45,14 @@ Field<T> optional_number(Doc d, std::optional<double> T::*member, Range range,
 }
 
 template <class T>
-Field<T> integer(Doc d, int T::*member, Range range) {
+Field<T> integer(Doc d, int T::*member, Range range, std::string also = "") {
   auto read = [member, range](FileReader& r, const YAML::Node& n, const std::string& key, T& out) {
     const int value = read_integer(r, n, key);
     check_range(r, n, key, range, value);
     out.*member = value;
   };
-  return {key_doc(d, "integer", std::to_string(T{}.*member), range.text()), read};
+  const std::string allowed = also.empty() ? range.text() : range.text() + ", " + also;
+  return {key_doc(d, "integer", std::to_string(T{}.*member), allowed), read};
 }
 
 template <class T>

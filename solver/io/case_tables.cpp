@@ -105,11 +105,13 @@ const Table<MaterialConfig>& material_table() {
        rect({"box", "m", "", "zone of region 'box'"}, &MaterialConfig::box,
             "overlaps domain.outer", "none"),
        number({"youngs_modulus", "Pa", "Table 3.1: E = 25 GPa", "Young's modulus"},
-              &MaterialConfig::youngs_modulus_Pa, positive_up_to(kMaxModulus)),
+              &MaterialConfig::youngs_modulus_Pa, positive_up_to(kMaxModulus),
+              "above any solid (diamond: 1.2e12)"),
        number({"poissons_ratio", "-", "Table 3.1: nu = 0.25", "Poisson's ratio (plane strain)"},
               &MaterialConfig::poissons_ratio, interval(0, false, 0.5, true)),
        number({"density", "kg/m^3", "Table 3.1: rho_r = 2650 kg/m^3", "rock density"},
-              &MaterialConfig::density_kg_m3, positive_up_to(kMaxDensity))}};
+              &MaterialConfig::density_kg_m3, positive_up_to(kMaxDensity),
+              "above any solid (osmium: 2.3e4)")}};
   return table;
 }
 
@@ -305,10 +307,13 @@ const Table<FarFieldConfig>& far_field_table() {
       "Far-field stress, tension positive, applied as tractions t = sigma . n on the listed "
       "sides of `domain.outer` (a 5 MPa compression is `syy: -5e6`).",
       {number({"sxx", "Pa", "Table 5.4: sigma_1, sigma_3", "normal stress along x"},
-              &FarFieldConfig::sxx_Pa, magnitude_up_to(kMaxStress)),
+              &FarFieldConfig::sxx_Pa, magnitude_up_to(kMaxStress),
+              "10 x the strength of the strongest rock"),
        number({"syy", "Pa", "§3.1: 5 MPa background stress", "normal stress along y"},
-              &FarFieldConfig::syy_Pa, magnitude_up_to(kMaxStress)),
-       number({"sxy", "Pa", "", "shear stress"}, &FarFieldConfig::sxy_Pa, magnitude_up_to(kMaxStress)),
+              &FarFieldConfig::syy_Pa, magnitude_up_to(kMaxStress),
+              "10 x the strength of the strongest rock"),
+       number({"sxy", "Pa", "", "shear stress"}, &FarFieldConfig::sxy_Pa, magnitude_up_to(kMaxStress),
+              "10 x the strength of the strongest rock"),
        choice_list({"sides", "", "§3.1: upper and lower boundaries",
                     "sides of domain.outer loaded by the far-field stress"},
                    &FarFieldConfig::sides, {"left", "right", "bottom", "top"}),
@@ -342,7 +347,8 @@ const Table<ContactConfig>& contact_table() {
                                      {"penalty", ContactMethod::penalty}}),
        number({"normal_stiffness", "-", "Table 3.1: k_n = 100 E; Table 5.1: 30 E",
                "normal spring k_n / max E"},
-              &ContactConfig::normal_stiffness_factor, positive_up_to(kMaxStiffnessFactor)),
+              &ContactConfig::normal_stiffness_factor, positive_up_to(kMaxStiffnessFactor),
+              "the seed uses 30 to 100; beyond 1e6 the stiffness matrix loses all digits"),
        number({"shear_stiffness", "-", "Table 3.1: k_s = 100 E; Table 5.1: 30 E",
                "shear spring k_s / max E"},
               &ContactConfig::shear_stiffness_factor, positive_up_to(kMaxStiffnessFactor)),
@@ -367,7 +373,8 @@ const Table<NumericsConfig>& numerics_table() {
                "ALM stop: max abs(k g) <= tolerance * max abs(contact force)"},
               &NumericsConfig::alm_force_tolerance, positive_up_to(1)),
        integer({"max_alm_iterations", "", "§2.3 (ALM)", "ALM iterations per open-close pass"},
-               &NumericsConfig::max_alm_iterations, interval(1, false, kMaxIterations, false)),
+               &NumericsConfig::max_alm_iterations, interval(1, false, kMaxIterations, false),
+               "the seed needs a few hundred"),
        integer({"max_open_close_iterations", "", "§2.4: outer iterations",
                 "open-close iterations per time step"},
                &NumericsConfig::max_open_close_iterations, interval(1, false, kMaxIterations, false)),
@@ -396,7 +403,8 @@ const Table<NumericsConfig>& numerics_table() {
        integer({"max_step_cuts", "", "",
                 "times a step that fails to converge is retried with dt halved before the "
                 "run stops"},
-               &NumericsConfig::max_step_cuts, interval(0, false, 30, false))}};
+               &NumericsConfig::max_step_cuts, interval(0, false, 30, false),
+               "dt / 2^30 is about 1e-9 dt")}};
   return table;
 }
 
@@ -419,7 +427,8 @@ const Table<OutputConfig>& output_table() {
       "",
       {integer({"every_steps", "", "",
                 "joint CSV and VTU every n steps and always at the end; 0: end only"},
-               &OutputConfig::every_steps, interval(0, false, kMaxSteps, false)),
+               &OutputConfig::every_steps, interval(0, false, kMaxSteps, false),
+               "the most steps a run may have"),
        boolean({"vtu", "", "", "write VTU files"}, &OutputConfig::vtu)}};
   return table;
 }
@@ -459,7 +468,7 @@ const Table<CaseConfig>& case_table() {
        map_list({"point_loads", "", "", "concentrated forces"}, &CaseConfig::point_loads,
                 &point_load_table, 0, "none"),
        point({"body_force", "N/m^3", "", "body force per unit volume, e.g. [0, -rho g]"},
-             &CaseConfig::body_force_N_m3, "each component", magnitude_up_to(kMaxBodyForce)),
+             &CaseConfig::body_force_N_m3, "1000 g in rock; each component", magnitude_up_to(kMaxBodyForce)),
        fixed_point_list({"fixed_points", "m", "§3.3, §5.2: outer boundary fixed at corners",
                          "points held fixed (stiff springs)"}),
        optional_section({"fluid", "", "Table 3.1: fluid parameters",

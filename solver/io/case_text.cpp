@@ -114,9 +114,11 @@ class TextScanner {
     for (std::size_t i = from; i < line.size(); ++i) {
       const char c = line[i];
       if (is_blank(c)) continue;
-      const bool token_start = previous == 0 || previous == ':' || previous == '-' ||
-                               previous == '[' || previous == '{' || previous == ',' ||
-                               previous == '?';
+      // Where a scalar may start: a quote or bracket elsewhere belongs to a plain scalar
+      // (`title: Griffith's crack`, `name: a-'b`).
+      const bool token_start = previous == 0 || previous == ':' || previous == '[' ||
+                               previous == '{' || previous == ',' ||
+                               ((previous == '-' || previous == '?') && is_blank(line[i - 1]));
       if (c == '#' && (i == 0 || is_blank(line[i - 1]))) {
         content_end_ = i;
         return;

@@ -32,6 +32,8 @@ TEST(CaseFileHostile, UnclosedQuoteIsRefused) {
 
 TEST(CaseFileHostile, QuotesThatAreNotUnclosedStillRead) {
   EXPECT_EQ(load("title: Griffith's crack\n").title, "Griffith's crack");
+  EXPECT_EQ(load("title: a-'b\n").title, "a-'b");
+  EXPECT_EQ(load("{\"title\":\"json\"}\n").title, "json");
   EXPECT_EQ(load("title: 'it''s \"here\"'  # comment's\n").title, "it's \"here\"");
   EXPECT_EQ(load("title: |\n  a \"quote' left open\n").title, "a \"quote' left open\n");
   const CaseConfig c = load(
