@@ -126,6 +126,12 @@ double read_number(const FileReader& r, const YAML::Node& node, const std::strin
 int read_integer(const FileReader& r, const YAML::Node& node, const std::string& key) {
   const auto value = is_plain_scalar(node) ? parse_int(node.Scalar()) : std::nullopt;
   if (!value) fail_decimal_comma(r, node, key);
+  if (!value && is_plain_scalar(node)) {
+    std::string_view digits = node.Scalar();
+    if (digits.starts_with('+') || digits.starts_with('-')) digits.remove_prefix(1);
+    if (!digits.empty() && std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      r.fail(node, key, "is far too large (got '" + clip(node.Scalar()) + "'; see the allowed range of the key)");
+  }
   if (!value) r.fail(node, key, "expected an integer (got " + describe(node) + ")");
   return *value;
 }

@@ -181,7 +181,7 @@ TEST(CaseFileHostile, IntegersHaveUpperBounds) {
                     "must be in [1, 1e6]");
   expect_text_error("output: {every_steps: 100000000}\n", 1, "output.every_steps", "[0, 1e7]");
   expect_text_error("numerics: {max_coupling_iterations: 99999999999}\n", 1,
-                    "numerics.max_coupling_iterations", "expected an integer");
+                    "numerics.max_coupling_iterations", "is far too large (got '99999999999'");
 }
 
 TEST(CaseFileHostile, HugeListsAreRefused) {
