@@ -78,7 +78,7 @@ const Table<BreakablePatternConfig>& pattern_table() {
        required(number({"cell_size", "m", "§3.4: joints at 2 m intervals",
                         "side of the grid's square cells: spacing of the horizontal and "
                         "vertical lines, and of the intercepts c of the diagonals"},
-                       &P::cell_size_m, greater_than(0))),
+                       &P::cell_size_m, greater_than(0), kWithinDomain)),
        point({"origin", "m", "", "a corner of the grid's cells"}, &P::origin,
              "inside domain.outer"),
        required(choice_list({"lines", "", "§3.4: grid lines and diagonals; §3.5: -45 deg diagonals",
@@ -89,11 +89,11 @@ const Table<BreakablePatternConfig>& pattern_table() {
                &P::breakable),
        optional_number({"tensile_strength", "Pa", "§3.5: T0 = 0.1 MPa on -45 deg diagonals",
                         "tensile strength T0 of the bonds on its lines"},
-                       &P::tensile_strength_Pa, at_least(0), "joints.tensile_strength"),
+                       &P::tensile_strength_Pa, zero_to(kMaxStrength), "joints.tensile_strength"),
        fracture_toughness_key<P>("T0 of the bonds on its lines", &P::fracture_toughness_Pa_sqrt_m,
                                  "joints.fracture_toughness"),
        optional_number({"cohesion", "Pa", "", "cohesion C0 of the bonds on its lines"},
-                       &P::cohesion_Pa, at_least(0), "joints.cohesion"),
+                       &P::cohesion_Pa, zero_to(kMaxStrength), "joints.cohesion"),
        optional_number({"friction_angle", "deg", "", "friction angle of the joints on its lines"},
                        &P::friction_angle_deg, interval(0, false, 90, true),
                        "joints.friction_angle")}};

@@ -3,6 +3,9 @@
 
 #include "io/case_checks.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "io/breakable_patterns.hpp"
 #include "io/load_ramp_keys.hpp"
 
@@ -59,6 +62,70 @@ void check_end_time(const CaseConfig& c, const MergedChecker& m) {
     m.fail("time.end_time", "must be >= time.dt (got " + values + ")");
   m.fail("time.dt", "must be <= time.end_time (got " + values + "; end_time was not set and "
                     "defaults to " + format_number(TimeConfig{}.end_time_s) + ")");
+}
+
+/// At most kMaxSteps steps, and a whole number of them: the run ends at end_time.
+void check_step_count(const CaseConfig& c, const MergedChecker& m) {
+  if (c.load_ramp) return;  // levels, not end_time, set the steps (checked with load_ramp)
+  const double steps = c.time.end_time_s / c.time.dt_s;
+  const std::string key = m.present("time.end_time") || !m.present("time.dt") ? "time.end_time" : "time.dt";
+  const std::string values =
+      "end_time " + format_number(c.time.end_time_s) + " s, dt " + format_number(c.time.dt_s) + " s";
+  if (steps > kMaxSteps)
+    m.fail(key, "gives " + format_number(steps) + " time steps (" + values + "); at most " +
+                    format_number(kMaxSteps) + " are allowed: raise dt or lower end_time");
+  const double whole = std::round(steps);
+  if (std::abs(steps - whole) > 1e-9 * std::max(1.0, steps)) {
+    const double below = std::floor(steps) * c.time.dt_s, above = std::ceil(steps) * c.time.dt_s;
+    m.fail(key, "is not a whole number of time steps (" + values + ": " + format_number(steps) +
+                    " steps); the run would end at another time: make end_time a multiple of dt, e.g. " +
+                    format_number(below) + " or " + format_number(above) + " s");
+  }
+}
+
+/// Lengths no larger than the domain, and a mesh of at most kMaxCells cells.
+void check_lengths(const CaseConfig& c, const MergedChecker& m) {
+  const Rect& d = c.domain.outer;
+  const double size = std::max(d.xmax - d.xmin, d.ymax - d.ymin);
+  const double area = (d.xmax - d.xmin) * (d.ymax - d.ymin);
+  const std::string side = "the larger side of domain.outer, " + format_number(size) + " m";
+  auto length = [&](const std::string& key, double value) {
+    if (value > size) m.fail(key, "must be <= " + side + " (got " + format_number(value) + ")");
+  };
+  auto area_at_most = [&](const std::string& key, double value) {
+    if (value > area)
+      m.fail(key, "must be <= the area of domain.outer, " + format_number(area) + " m^2 (got " +
+                      format_number(value) + ")");
+  };
+  if (c.mesh.kind == MeshKind::structured) {
+    length("mesh.cell_size", c.mesh.cell_size_m);
+  } else {
+    area_at_most("mesh.max_area_inner", c.mesh.max_area_inner_m2);
+    if (c.domain.inner) area_at_most("mesh.max_area_outer", c.mesh.max_area_outer_m2);
+  }
+  length("contact.vertex_vertex_activation", c.contact.vertex_vertex_activation_m);
+  for (std::size_t i = 0; i < c.fractures.size(); ++i) {
+    length(item_key("fractures", i) + ".segment_length", c.fractures[i].segment_length_m);
+    length(item_key("fractures", i) + ".initial_width", c.fractures[i].initial_width_m);
+  }
+  for (std::size_t i = 0; i < c.breakable_patterns.size(); ++i)
+    length(item_key("breakable_patterns", i) + ".cell_size", c.breakable_patterns[i].cell_size_m);
+  const Rect fine = c.domain.inner.value_or(d);
+  const double fine_area = (fine.xmax - fine.xmin) * (fine.ymax - fine.ymin);
+  double cells = 0;
+  std::string key;
+  if (c.mesh.kind == MeshKind::structured) {
+    cells = fine_area / (c.mesh.cell_size_m * c.mesh.cell_size_m);
+    key = "mesh.cell_size";
+  } else {
+    cells = fine_area / c.mesh.max_area_inner_m2 +
+            (c.domain.inner ? (area - fine_area) / c.mesh.max_area_outer_m2 : 0.0);
+    key = cells > 0 && fine_area / c.mesh.max_area_inner_m2 >= cells / 2 ? "mesh.max_area_inner"
+                                                                        : "mesh.max_area_outer";
+  }
+  if (cells > kMaxCells)
+    m.fail(key, "would make about " + format_number(std::round(cells)) + " cells; at most " +
+                    format_number(kMaxCells) + " are allowed");
 }
 
 void check_material_regions(const CaseConfig& c, const MergedChecker& m) {
@@ -148,6 +215,14 @@ const std::vector<CrossCheck>& cross_checks() {
   static const std::vector<CrossCheck> checks{
       {"`domain.inner` lies strictly inside `domain.outer`.", check_inner_inside_outer},
       {"`time.end_time` >= `time.dt`.", check_end_time},
+      {"Without a `load_ramp`, `time.end_time` is a whole number of steps of `time.dt` (to "
+       "1e-9 relative), at most 1e7 steps.",
+       check_step_count},
+      {"Lengths (`mesh.cell_size` of a structured mesh, `contact.vertex_vertex_activation`, `fractures[].segment_length`, "
+       "`fractures[].initial_width`, `breakable_patterns[].cell_size`) are at most the larger side of "
+       "`domain.outer`, the triangle areas of a Delaunay mesh at most its area, and the mesh has at most about 1e7 cells "
+       "(the inner rectangle, or the domain, over the cell size squared or the largest triangle area).",
+       check_lengths},
       {"A material with region `inner` or `outer` needs `domain.inner`; a material box "
        "overlaps `domain.outer`.",
        check_material_regions},

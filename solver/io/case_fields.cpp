@@ -10,10 +10,10 @@ const Table<Rect>& rect_table() {
       "`breakable_patterns[].region`)",
       "A rectangle is given whole, all four keys, and replaces the previous one; "
       "xmin < xmax and ymin < ymax.",
-      {required(number<Rect>({"xmin", "m", "", "left edge"}, &Rect::xmin, any_value())),
-       required(number<Rect>({"xmax", "m", "", "right edge"}, &Rect::xmax, any_value())),
-       required(number<Rect>({"ymin", "m", "", "bottom edge"}, &Rect::ymin, any_value())),
-       required(number<Rect>({"ymax", "m", "", "top edge"}, &Rect::ymax, any_value()))}};
+      {required(number<Rect>({"xmin", "m", "", "left edge"}, &Rect::xmin, magnitude_up_to(kMaxCoordinate))),
+       required(number<Rect>({"xmax", "m", "", "right edge"}, &Rect::xmax, magnitude_up_to(kMaxCoordinate))),
+       required(number<Rect>({"ymin", "m", "", "bottom edge"}, &Rect::ymin, magnitude_up_to(kMaxCoordinate))),
+       required(number<Rect>({"ymax", "m", "", "top edge"}, &Rect::ymax, magnitude_up_to(kMaxCoordinate)))}};
   return table;
 }
 

@@ -45,13 +45,14 @@ Field<T> optional_number(Doc d, std::optional<double> T::*member, Range range,
 }
 
 template <class T>
-Field<T> integer(Doc d, int T::*member, Range range) {
+Field<T> integer(Doc d, int T::*member, Range range, std::string also = "") {
   auto read = [member, range](FileReader& r, const YAML::Node& n, const std::string& key, T& out) {
     const int value = read_integer(r, n, key);
     check_range(r, n, key, range, value);
     out.*member = value;
   };
-  return {key_doc(d, "integer", std::to_string(T{}.*member), range.text()), read};
+  const std::string allowed = also.empty() ? range.text() : range.text() + ", " + also;
+  return {key_doc(d, "integer", std::to_string(T{}.*member), allowed), read};
 }
 
 template <class T>
@@ -100,7 +101,7 @@ M read_choice(const FileReader& r, const YAML::Node& n, const std::string& key,
   const std::string name = read_string(r, n, key);
   for (const auto& [candidate, value] : choices)
     if (candidate == name) return value;
-  r.fail(n, key, "must be one of: " + join(choice_names(choices), ", ") + " (got '" + name + "')");
+  r.fail(n, key, "must be one of: " + join(choice_names(choices), ", ") + " (got '" + clip(name) + "')");
 }
 
 /// An enumerated value written as one of a few words.
@@ -127,7 +128,7 @@ Field<T> choice_list(Doc d, std::vector<std::string> T::*member, std::vector<std
     for (std::size_t i = 0; i < n.size(); ++i) {
       const std::string value = read_choice(r, n[i], item_key(key, i), choices);
       if (std::find(values.begin(), values.end(), value) != values.end())
-        r.fail(n[i], item_key(key, i), "duplicate entry '" + value + "'");
+        r.fail(n[i], item_key(key, i), "duplicate entry '" + clip(value) + "'");
       values.push_back(value);
     }
     out.*member = std::move(values);
@@ -139,12 +140,17 @@ Field<T> choice_list(Doc d, std::vector<std::string> T::*member, std::vector<std
 
 // --- Points, names, required keys, nested maps ------------------------------
 
-/// A point [x, y]; `allowed` documents a check made on the merged case.
+/// A point [x, y]; `allowed` documents a check made on the merged case, or names what
+/// `range` applies to (each component).
 template <class T>
-Field<T> point(Doc d, Vec2 T::*member, std::string allowed) {
-  auto read = [member](FileReader& r, const YAML::Node& n, const std::string& key, T& out) {
-    out.*member = read_point(r, n, key);
+Field<T> point(Doc d, Vec2 T::*member, std::string allowed, Range range = {}) {
+  auto read = [member, range](FileReader& r, const YAML::Node& n, const std::string& key, T& out) {
+    const Vec2 p = read_point(r, n, key);
+    check_range(r, n, key + "[0]", range, p.x());
+    check_range(r, n, key + "[1]", range, p.y());
+    out.*member = p;
   };
+  if (range.lo || range.hi) allowed += " " + range.rule();
   return {key_doc(d, "[x, y]", format_point(T{}.*member), std::move(allowed)), read};
 }
 
@@ -207,7 +213,7 @@ Field<T> identifier(Doc d, std::string T::*member) {
     const std::string value = read_string(r, n, key);
     if (value.empty()) r.fail(n, key, "must not be empty");
     if (!std::all_of(value.begin(), value.end(), is_identifier_char))
-      r.fail(n, key, "may contain only letters, digits and '_' (got '" + value + "')");
+      r.fail(n, key, "may contain only letters, digits and '_' (got '" + clip(value) + "')");
     out.*member = value;
   };
   const std::string value = T{}.*member;
@@ -228,7 +234,7 @@ Field<T> fracture_toughness_key(const std::string& what, std::optional<double> T
        "Mode I toughness K_IC that sets " + what + " joint by joint: T0 = K_IC / sqrt(pi L / 2), "
        "L the joint's length, so the strength follows the mesh and the toughness does not; "
        "excludes tensile_strength in the same map"},
-      member, greater_than(0), std::move(fallback));
+      member, positive_up_to(kMaxStrength), std::move(fallback));
 }
 
 /// `tensile_strength` and `fracture_toughness` written in the same map.
@@ -274,13 +280,22 @@ Field<T> optional_rect(Doc d, std::optional<Rect> T::*member, std::string allowe
 
 // --- Lists ------------------------------------------------------------------
 
+/// Largest number of items of a case-file list (fractures, fixed points, probes, ...).
+inline constexpr std::size_t kMaxItems = 10000;
+
+inline void check_item_count(const FileReader& r, const YAML::Node& n, const std::string& key) {
+  if (n.size() > kMaxItems)
+    r.fail(n, key, "has " + std::to_string(n.size()) + " items; at most " + std::to_string(kMaxItems) +
+                       " are allowed");
+}
+
 /// A list of maps, replaced as a whole; each item starts from Item's defaults.
 template <class T, class Item>
 Field<T> map_list(Doc d, std::vector<Item> T::*member, const Table<Item>& (*table)(),
                   std::size_t min_items, std::string default_text,
                   std::type_identity_t<ItemCheck<Item>> check = {}) {
-  const std::string allowed =
-      min_items > 0 ? "at least " + std::to_string(min_items) + " item" : "any number of items";
+  const std::string allowed = min_items > 0 ? std::to_string(min_items) + " to " + std::to_string(kMaxItems) + " items"
+                                            : "at most " + std::to_string(kMaxItems) + " items";
   KeyDoc doc = key_doc(d, "list of maps", std::move(default_text), allowed);
   doc.child = [table] { return section_doc(table()); };
   auto read = [member, table, min_items, check](FileReader& r, const YAML::Node& n,
@@ -288,6 +303,7 @@ Field<T> map_list(Doc d, std::vector<Item> T::*member, const Table<Item>& (*tabl
     if (!n.IsSequence()) r.fail(n, key, "expected a list (got " + describe(n) + ")");
     if (n.size() < min_items)
       r.fail(n, key, "must have at least " + std::to_string(min_items) + " item(s)");
+    check_item_count(r, n, key);
     r.forget(key + "[");
     std::vector<Item> items;
     for (std::size_t i = 0; i < n.size(); ++i) {

@@ -19,6 +19,7 @@
 #include "io/case_config.hpp"
 #include "io/case_schema.hpp"
 #include "io/case_tables.hpp"
+#include "io/case_text.hpp"
 
 namespace hfdda::io {
 
@@ -77,12 +78,12 @@ void apply_base(FileReader& r, const YAML::Node& node, std::vector<ChainEntry>& 
   for (const auto& entry : chain) {
     if (entry.id != id) continue;
     std::vector<std::string> labels;
-    for (const auto& e : chain) labels.push_back(e.label);
-    labels.push_back(base);
+    for (const auto& e : chain) labels.push_back(clip(e.label));
+    labels.push_back(clip(base));
     r.fail(node, "extends", "extends cycle: " + join(labels, " -> "));
   }
   const auto base_text = read_text_file(base);
-  if (!base_text) r.fail(node, "extends", "file '" + base + "' cannot be read");
+  if (!base_text) r.fail(node, "extends", "file '" + clip(base) + "' cannot be read");
   chain.push_back({id, base});
   apply_case_text(*base_text, base, chain, config, where);
   chain.pop_back();
@@ -90,8 +91,12 @@ void apply_base(FileReader& r, const YAML::Node& node, std::vector<ChainEntry>& 
 
 void apply_case_text(const std::string& text, const std::string& file,
                      std::vector<ChainEntry>& chain, CaseConfig& config, Provenance& where) {
-  const YAML::Node root = parse_yaml(text, file);
-  if (root.IsNull()) return;  // an empty file changes nothing
+  const YAML::Node root = parse_yaml(prepare_case_text(text, file), file);
+  check_yaml_tree(root, file);
+  if (root.IsNull())
+    throw InputError(file, 0, "(document)",
+                     "empty case file: it sets no key (a case file that keeps every default "
+                     "still says so, e.g. with a title)");
   FileReader reader(file, where);
   if (root.IsMap()) {
     for (const auto& entry : root) {

@@ -62,6 +62,27 @@ marked *required*. A complete example is
   `probes`, `far_field.sides`), points and rectangles are replaced as a whole; list
   items start from the item defaults below. Chains are allowed; a cycle is an error.
 - Numbers are plain YAML numbers (`25e9`, `-5.0e6`); a quoted `"25e9"` is a string.
+  Every number is finite (`.inf` and `.nan` are errors); `1,5` is an error that asks
+  whether a decimal comma was meant.
+- One YAML document per file, UTF-8, at most 4 MiB. Refused, naming the line: an empty
+  file (no key at all), a quote not closed on the line it opens, a second document
+  after `---`, content after a `...` document end, YAML tags (`!!str 1.0`), anchors
+  and aliases (`&a`, `*a`), maps and lists nested more than 16 levels deep (checked
+  before the YAML is parsed), keys of more than 64 characters, bytes that are not UTF-8 in any string, a list of more than
+  100000 items (10000 for the lists of the tables below). LF, CR LF and CR line endings
+  are all read. Values and file names quoted in messages are cut to 80 characters.
+- The `allowed` ranges bound physical values to what is plausible for rock, fluid and
+  loading, with a wide margin: moduli <= 1e13 Pa (diamond is about 1.2e12 Pa),
+  stresses and pressures within 1e10 Pa (ten times the strength of the strongest
+  rocks), strengths <= 1e13 Pa (a strength that never acts can still be written),
+  densities <= 1e5 kg/m^3, body forces within 1e7 N/m^3 (1000 g in rock), spring
+  factors <= 1e6, times <= 1e10 s, counts of iterations <= 1e6 and of steps <= 1e7,
+  lengths within the domain. Beyond them the solution overflows or
+  the run cannot end; a value refused here is almost always a typing slip.
+- While running, the block positions and stresses, joint apertures and fluid
+  pressures are checked after every step; a value that is not finite stops the run
+  (exit code 1) with a message naming the quantity, the block, joint or node and its
+  coordinates, and the step; the outputs written so far are kept.
 - Checks that need the mesh (a material zone with no block, a degenerate block, a
   fracture off the grid lines of a structured mesh) are made when the model is built.
 - Without a `fluid` section no flow network is solved: fluid acts only through the

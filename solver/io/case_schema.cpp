@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
 
 namespace hfdda::io::schema {
@@ -52,10 +53,17 @@ std::string item_key(const std::string& prefix, std::size_t index) {
   return prefix + "[" + std::to_string(index) + "]";
 }
 
+std::string clip(std::string_view text, std::size_t max) {
+  if (text.size() <= max) return std::string(text);
+  std::size_t cut = max > 3 ? max - 3 : 0;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // whole UTF-8 characters
+  return std::string(text.substr(0, cut)) + "...";
+}
+
 std::string describe(const YAML::Node& node) {
   switch (node.Type()) {
     case YAML::NodeType::Scalar:
-      return (node.Tag() == "!" ? "the quoted string '" : "'") + node.Scalar() + "'";
+      return (node.Tag() == "!" ? "the quoted string '" : "'") + clip(node.Scalar()) + "'";
     case YAML::NodeType::Sequence: return "a list";
     case YAML::NodeType::Map: return "a map";
     case YAML::NodeType::Null: return "null";
@@ -87,10 +95,29 @@ std::optional<int> parse_int(std::string_view text) {
 /// A plain (unquoted) scalar: YAML types a quoted "5" as a string, and so do we.
 bool is_plain_scalar(const YAML::Node& node) { return node.IsScalar() && node.Tag() != "!"; }
 
+/// "1,5": a number written with a decimal comma; returns "1.5".
+std::optional<std::string> decimal_comma(const std::string& text) {
+  const auto comma = text.find(',');
+  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) return std::nullopt;
+  std::string dotted = text;
+  dotted[comma] = '.';
+  if (!parse_double(dotted) || comma == 0 || !std::isdigit(static_cast<unsigned char>(text[comma - 1])) ||
+      comma + 1 == text.size() || !std::isdigit(static_cast<unsigned char>(text[comma + 1])))
+    return std::nullopt;
+  return dotted;
+}
+
+void fail_decimal_comma(const FileReader& r, const YAML::Node& node, const std::string& key) {
+  if (!is_plain_scalar(node)) return;
+  if (const auto dotted = decimal_comma(node.Scalar()))
+    r.fail(node, key, "decimal comma? write " + clip(*dotted) + " (got '" + clip(node.Scalar()) + "')");
+}
+
 }  // namespace
 
 double read_number(const FileReader& r, const YAML::Node& node, const std::string& key) {
   const auto value = is_plain_scalar(node) ? parse_double(node.Scalar()) : std::nullopt;
+  if (!value) fail_decimal_comma(r, node, key);
   if (!value || !std::isfinite(*value))
     r.fail(node, key, "expected a finite number (got " + describe(node) + ")");
   return *value;
@@ -98,6 +125,13 @@ double read_number(const FileReader& r, const YAML::Node& node, const std::strin
 
 int read_integer(const FileReader& r, const YAML::Node& node, const std::string& key) {
   const auto value = is_plain_scalar(node) ? parse_int(node.Scalar()) : std::nullopt;
+  if (!value) fail_decimal_comma(r, node, key);
+  if (!value && is_plain_scalar(node)) {
+    std::string_view digits = node.Scalar();
+    if (digits.starts_with('+') || digits.starts_with('-')) digits.remove_prefix(1);
+    if (!digits.empty() && std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      r.fail(node, key, "is far too large (got '" + clip(node.Scalar()) + "'; see the allowed range of the key)");
+  }
   if (!value) r.fail(node, key, "expected an integer (got " + describe(node) + ")");
   return *value;
 }

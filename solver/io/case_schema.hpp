@@ -38,6 +38,8 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 std::string child_key(const std::string& prefix, const std::string& name);
 /// "prefix[index]".
 std::string item_key(const std::string& prefix, std::size_t index);
+/// `text` cut to `max` characters, "..." marking a cut (values echoed in messages).
+std::string clip(std::string_view text, std::size_t max = 80);
 /// How a node reads in an error message: "'abc'", "a list", "a map", "null"; quoted
 /// scalars say so, because YAML types them as strings.
 std::string describe(const YAML::Node& node);
@@ -101,6 +103,29 @@ std::string read_string(const FileReader& r, const YAML::Node& node, const std::
 Vec2 read_point(const FileReader& r, const YAML::Node& node, const std::string& key);
 
 // ---------------------------------------------------------------------------
+// Plausible bounds of physical parameters (docs/case_file.md, `allowed` column). Far
+// beyond any rock, fluid or loading the model is meant for, yet small enough that sums
+// and products of them (a stiffness factor times a modulus times a length) stay far
+// from overflow, so a typing slip is refused instead of giving NaN coordinates.
+
+inline constexpr double kMaxModulus = 1e13;          ///< Pa: Young's and bulk moduli (diamond: 1.2e12)
+inline constexpr double kMaxDensity = 1e5;           ///< kg/m^3 (osmium: 2.3e4)
+inline constexpr double kMaxStress = 1e10;           ///< Pa: stresses and pressures
+/// Pa (and Pa m^0.5 for a toughness): up to a modulus, so "a strength that never acts"
+/// can still be written.
+inline constexpr double kMaxStrength = 1e13;
+inline constexpr double kMaxBodyForce = 1e7;         ///< N/m^3: 1000 g in rock
+inline constexpr double kMaxPointForce = 1e12;       ///< N/m: kMaxStress over 100 m
+inline constexpr double kMaxStiffnessFactor = 1e6;   ///< contact springs / max E
+inline constexpr double kMaxCoordinate = 1e7;        ///< m: rectangle edges
+inline constexpr double kMaxTime = 1e10;             ///< s: about 300 years
+inline constexpr double kMaxIterations = 1e6;        ///< iteration counts
+inline constexpr double kMaxSteps = 1e7;             ///< time steps of a run
+inline constexpr double kMaxCells = 1e7;             ///< cells of a mesh, estimated from sizes
+inline constexpr const char* kWithinDomain = "<= the larger side of domain.outer";
+inline constexpr const char* kAreaWithinDomain = "<= the area of domain.outer";
+
+// ---------------------------------------------------------------------------
 // Ranges
 
 /// Allowed interval of a number; unset bounds are open-ended.
@@ -124,6 +149,12 @@ inline Range at_least(double lo) { return {lo, std::nullopt, false, false}; }
 inline Range interval(double lo, bool lo_open, double hi, bool hi_open) {
   return {lo, hi, lo_open, hi_open};
 }
+/// (0, hi]: a positive quantity with a plausible upper bound.
+inline Range positive_up_to(double hi) { return interval(0, true, hi, false); }
+/// [0, hi].
+inline Range zero_to(double hi) { return interval(0, false, hi, false); }
+/// [-m, m].
+inline Range magnitude_up_to(double m) { return interval(-m, false, m, false); }
 
 void check_range(const FileReader& r, const YAML::Node& node, const std::string& key,
                  const Range& range, double value);

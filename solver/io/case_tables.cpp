@@ -20,6 +20,7 @@ namespace {
 Field<CaseConfig> fixed_point_list(Doc d) {
   auto read = [](FileReader& r, const YAML::Node& n, const std::string& key, CaseConfig& out) {
     if (!n.IsSequence()) r.fail(n, key, "expected a list of points (got " + describe(n) + ")");
+    check_item_count(r, n, key);
     r.forget(key + "[");
     std::vector<FixedPointConfig> points;
     for (std::size_t i = 0; i < n.size(); ++i) {
@@ -29,7 +30,7 @@ Field<CaseConfig> fixed_point_list(Doc d) {
     }
     out.fixed_points = std::move(points);
   };
-  return {key_doc(d, "list of [x, y]", "none", "each inside domain.outer"), read};
+  return {key_doc(d, "list of [x, y]", "none", "at most 10000, each inside domain.outer"), read};
 }
 
 // --- Sections ---------------------------------------------------------------
@@ -59,10 +60,10 @@ const Table<MeshConfig>& mesh_table() {
                                 {"delaunay", MeshKind::delaunay}}),
        number({"cell_size", "m", "§3.1: joints 1 m apart; §3.2: 0.5 to 4 m",
                "side of the square cells inside the inner rectangle"},
-              &MeshConfig::cell_size_m, greater_than(0)),
+              &MeshConfig::cell_size_m, greater_than(0), kWithinDomain),
        number({"outer_growth", "-", "§3.1: coarser outer domain",
                "ratio of successive cell sizes from the inner rectangle outwards"},
-              &MeshConfig::outer_growth, at_least(1)),
+              &MeshConfig::outer_growth, interval(1, false, 10, false)),
        choice({"split", "", "§3.1: quadrilaterals vs triangles",
                "quadrilateral cells kept whole or split into 2 or 4 triangles"},
               &MeshConfig::split,
@@ -71,10 +72,10 @@ const Table<MeshConfig>& mesh_table() {
                                        {"four", mesh::CellSplit::four}}),
        number({"max_area_inner", "m^2", "§3.3: 30 mm^2; §5.2: 2 cm^2",
                "largest triangle area inside the inner rectangle (everywhere without one)"},
-              &MeshConfig::max_area_inner_m2, greater_than(0)),
+              &MeshConfig::max_area_inner_m2, greater_than(0), kAreaWithinDomain),
        number({"max_area_outer", "m^2", "§5.5: 50 m^2",
                "largest triangle area outside the inner rectangle"},
-              &MeshConfig::max_area_outer_m2, greater_than(0)),
+              &MeshConfig::max_area_outer_m2, greater_than(0), kAreaWithinDomain),
        number({"min_angle", "deg", "", "minimum triangle angle of the Delaunay refinement"},
               &MeshConfig::min_angle_deg, interval(0, true, 30, false))}};
   return table;
@@ -104,11 +105,13 @@ const Table<MaterialConfig>& material_table() {
        rect({"box", "m", "", "zone of region 'box'"}, &MaterialConfig::box,
             "overlaps domain.outer", "none"),
        number({"youngs_modulus", "Pa", "Table 3.1: E = 25 GPa", "Young's modulus"},
-              &MaterialConfig::youngs_modulus_Pa, greater_than(0)),
+              &MaterialConfig::youngs_modulus_Pa, positive_up_to(kMaxModulus),
+              "above any solid (diamond: 1.2e12)"),
        number({"poissons_ratio", "-", "Table 3.1: nu = 0.25", "Poisson's ratio (plane strain)"},
               &MaterialConfig::poissons_ratio, interval(0, false, 0.5, true)),
        number({"density", "kg/m^3", "Table 3.1: rho_r = 2650 kg/m^3", "rock density"},
-              &MaterialConfig::density_kg_m3, greater_than(0))}};
+              &MaterialConfig::density_kg_m3, positive_up_to(kMaxDensity),
+              "above any solid (osmium: 2.3e4)")}};
   return table;
 }
 
@@ -117,7 +120,7 @@ const Table<MaterialConfig>& material_table() {
 Field<JointConfig> joint_tensile_strength() {
   Field<JointConfig> field = number({"tensile_strength", "Pa", "Table 3.1: T0 = 0; Table 5.1: T0 = 6 MPa",
                                      "tensile strength T0 of intact bonds (seed eq. 2.16)"},
-                                    &JointConfig::tensile_strength_Pa, at_least(0));
+                                    &JointConfig::tensile_strength_Pa, zero_to(kMaxStrength));
   field.read = [read = field.read](FileReader& r, const YAML::Node& n, const std::string& key, JointConfig& out) {
     read(r, n, key, out);
     out.fracture_toughness_Pa_sqrt_m.reset();
@@ -140,7 +143,7 @@ const Table<JointConfig>& joint_table() {
        fracture_toughness_key("T0 of intact bonds", &JointConfig::fracture_toughness_Pa_sqrt_m, "none"),
        number({"cohesion", "Pa", "Tables 5.1, 5.3: C0",
                "cohesion C0 of intact bonds (seed eq. 2.16)"},
-              &JointConfig::cohesion_Pa, at_least(0)),
+              &JointConfig::cohesion_Pa, zero_to(kMaxStrength)),
        number({"friction_angle", "deg", "Table 3.1: phi = 30 deg", "friction angle phi"},
               &JointConfig::friction_angle_deg, interval(0, false, 90, true)),
        boolean({"breakable", "", "§2.3", "false: intact bonds never break"},
@@ -195,7 +198,7 @@ const Table<FractureConfig>& fracture_table() {
                       "inside domain.outer")),
        number({"segment_length", "m", "§3.1: joints 1 m apart",
                "Delaunay constraint piece length; 0: the mesh size"},
-              &FractureConfig::segment_length_m, at_least(0)),
+              &FractureConfig::segment_length_m, at_least(0), kWithinDomain),
        boolean({"initially_open", "", "§3.2: joints at the injection point start open",
                 "bonds on the line are broken at t = 0"},
                &FractureConfig::initially_open),
@@ -207,20 +210,20 @@ const Table<FractureConfig>& fracture_table() {
                         &FractureConfig::breakable, "joints.breakable"),
        optional_number({"tensile_strength", "Pa", "Table 5.1: natural fracture T0 = 0",
                         "tensile strength T0 of its bonds"},
-                       &FractureConfig::tensile_strength_Pa, at_least(0),
+                       &FractureConfig::tensile_strength_Pa, zero_to(kMaxStrength),
                        "joints.tensile_strength"),
        fracture_toughness_key("T0 of its bonds", &FractureConfig::fracture_toughness_Pa_sqrt_m,
                               "joints.fracture_toughness"),
        optional_number({"cohesion", "Pa", "Table 5.1: natural fracture C0 = 0",
                         "cohesion C0 of its bonds"},
-                       &FractureConfig::cohesion_Pa, at_least(0), "joints.cohesion"),
+                       &FractureConfig::cohesion_Pa, zero_to(kMaxStrength), "joints.cohesion"),
        optional_number({"friction_angle", "deg", "Table 5.1: natural fracture phi = 35 deg",
                         "friction angle of its joints"},
                        &FractureConfig::friction_angle_deg, interval(0, false, 90, true),
                        "joints.friction_angle"),
        optional_number({"pressure", "Pa", "§3.1: 9.81 MPa",
                         "fluid pressure prescribed on its joints"},
-                       &FractureConfig::pressure_Pa, at_least(0), "none"),
+                       &FractureConfig::pressure_Pa, zero_to(kMaxStress), "none"),
        boolean({"fluid_filled", "",
                 "§3.2: the two fractures on either side of the injection point were "
                 "initially opened",
@@ -230,12 +233,13 @@ const Table<FractureConfig>& fracture_table() {
        number({"initial_width", "m", "",
                "initial aperture of its fluid-filled joints; 0: the minimum width "
                "(numerics.min_width_main)"},
-              &FractureConfig::initial_width_m, at_least(0), "> 0 only with fluid_filled"),
+              &FractureConfig::initial_width_m, at_least(0),
+              std::string(kWithinDomain) + ", > 0 only with fluid_filled"),
        number({"initial_pressure", "Pa",
                "§3.3: notch fluid at 0.08 % compression by mass, i.e. 0.0008 K_f",
                "initial fluid pressure of its fluid-filled joints: they hold rho(p) times "
                "their volume (fluid.bulk_modulus, eq. 2.6)"},
-              &FractureConfig::initial_pressure_Pa, at_least(0), "> 0 only with fluid_filled")}};
+              &FractureConfig::initial_pressure_Pa, zero_to(kMaxStress), "> 0 only with fluid_filled")}};
   return table;
 }
 
@@ -247,22 +251,22 @@ const Table<FluidConfig>& fluid_table() {
       "(p - p0) / K_f) (seed eq. 2.6); cubic law with viscosity mu (eq. 2.2).",
       {number({"density", "kg/m^3", "Table 3.1: rho_f = 1000 kg/m^3",
                "reference density rho0, at the reference pressure"},
-              &FluidConfig::density_kg_m3, greater_than(0)),
+              &FluidConfig::density_kg_m3, positive_up_to(kMaxDensity)),
        number({"bulk_modulus", "Pa", "Table 3.1: K_f = 2.2 GPa",
                "bulk modulus K_f; compressibility c_f = 1 / K_f"},
-              &FluidConfig::bulk_modulus_Pa, greater_than(0)),
+              &FluidConfig::bulk_modulus_Pa, positive_up_to(kMaxModulus)),
        number({"viscosity", "Pa s", "Table 3.1: mu = 1 mPa s; Table 5.3: 20 mPa s",
                "dynamic viscosity mu"},
-              &FluidConfig::viscosity_Pa_s, greater_than(0)),
+              &FluidConfig::viscosity_Pa_s, positive_up_to(1e6)),
        number({"reference_pressure", "Pa", "eq. 2.6: p0",
                "pressure p0 at which the density is rho0"},
-              &FluidConfig::reference_pressure_Pa, any_value()),
+              &FluidConfig::reference_pressure_Pa, magnitude_up_to(kMaxStress)),
        number({"leak_off_coefficient", "m/s^0.5", "§3.4: C_L = 0.02 mm/s^0.5 = 2e-5",
                "Carter coefficient C_L of one fracture wall; 0: no leak-off. Both walls "
                "leak: a wetted joint of length L loses 2 C_L L / sqrt(t - t0) per metre of "
                "depth, t0 the time fluid reached it (the seed's eq. 2.3 counts one wall; "
                "erratum 4 in docs/seed_errata.md)"},
-              &FluidConfig::leak_off_coefficient_m_sqrt_s, at_least(0))}};
+              &FluidConfig::leak_off_coefficient_m_sqrt_s, zero_to(1))}};
   return table;
 }
 
@@ -276,9 +280,9 @@ const Table<InjectionConfig>& injection_table() {
                       &InjectionConfig::at, "inside domain.outer")),
        required(number({"mass_rate", "kg/s", "§3.2: Q0 = 4 kg/s; §3.4: 1 kg/s",
                         "injected mass per second and per metre of out-of-plane thickness"},
-                       &InjectionConfig::mass_rate_kg_s, greater_than(0))),
+                       &InjectionConfig::mass_rate_kg_s, positive_up_to(1e6))),
        number({"start_time", "s", "", "time at which injection starts (then continues)"},
-              &InjectionConfig::start_time_s, at_least(0))}};
+              &InjectionConfig::start_time_s, zero_to(kMaxTime))}};
   return table;
 }
 
@@ -303,10 +307,13 @@ const Table<FarFieldConfig>& far_field_table() {
       "Far-field stress, tension positive, applied as tractions t = sigma . n on the listed "
       "sides of `domain.outer` (a 5 MPa compression is `syy: -5e6`).",
       {number({"sxx", "Pa", "Table 5.4: sigma_1, sigma_3", "normal stress along x"},
-              &FarFieldConfig::sxx_Pa, any_value()),
+              &FarFieldConfig::sxx_Pa, magnitude_up_to(kMaxStress),
+              "10 x the strength of the strongest rock"),
        number({"syy", "Pa", "§3.1: 5 MPa background stress", "normal stress along y"},
-              &FarFieldConfig::syy_Pa, any_value()),
-       number({"sxy", "Pa", "", "shear stress"}, &FarFieldConfig::sxy_Pa, any_value()),
+              &FarFieldConfig::syy_Pa, magnitude_up_to(kMaxStress),
+              "10 x the strength of the strongest rock"),
+       number({"sxy", "Pa", "", "shear stress"}, &FarFieldConfig::sxy_Pa, magnitude_up_to(kMaxStress),
+              "10 x the strength of the strongest rock"),
        choice_list({"sides", "", "§3.1: upper and lower boundaries",
                     "sides of domain.outer loaded by the far-field stress"},
                    &FarFieldConfig::sides, {"left", "right", "bottom", "top"}),
@@ -325,7 +332,7 @@ const Table<PointLoadConfig>& point_load_table() {
       {point({"at", "m", "", "point of application"}, &PointLoadConfig::at,
              "inside domain.outer"),
        point({"force", "N/m", "", "force per metre of out-of-plane thickness"},
-             &PointLoadConfig::force_N_per_m, "any")}};
+             &PointLoadConfig::force_N_per_m, "each component", magnitude_up_to(kMaxPointForce))}};
   return table;
 }
 
@@ -340,16 +347,17 @@ const Table<ContactConfig>& contact_table() {
                                      {"penalty", ContactMethod::penalty}}),
        number({"normal_stiffness", "-", "Table 3.1: k_n = 100 E; Table 5.1: 30 E",
                "normal spring k_n / max E"},
-              &ContactConfig::normal_stiffness_factor, greater_than(0)),
+              &ContactConfig::normal_stiffness_factor, positive_up_to(kMaxStiffnessFactor),
+              "the seed uses 30 to 100; beyond 1e6 the stiffness matrix loses all digits"),
        number({"shear_stiffness", "-", "Table 3.1: k_s = 100 E; Table 5.1: 30 E",
                "shear spring k_s / max E"},
-              &ContactConfig::shear_stiffness_factor, greater_than(0)),
+              &ContactConfig::shear_stiffness_factor, positive_up_to(kMaxStiffnessFactor)),
        number({"vertex_vertex_activation", "m", "§2.3 item v (cited in §3.1)",
                "tolerance for applying vertex-vertex contacts"},
-              &ContactConfig::vertex_vertex_activation_m, at_least(0)),
+              &ContactConfig::vertex_vertex_activation_m, at_least(0), kWithinDomain),
        number({"fixed_point_stiffness", "-", "§3.3: corners fixed",
                "fixed-point spring / max E"},
-              &ContactConfig::fixed_point_stiffness_factor, greater_than(0))}};
+              &ContactConfig::fixed_point_stiffness_factor, positive_up_to(kMaxStiffnessFactor))}};
   return table;
 }
 
@@ -363,38 +371,40 @@ const Table<NumericsConfig>& numerics_table() {
                                     {"dynamic", AnalysisKind::dynamic_analysis}}),
        number({"alm_tolerance", "-", "§2.3 (ALM)",
                "ALM stop: max abs(k g) <= tolerance * max abs(contact force)"},
-              &NumericsConfig::alm_force_tolerance, greater_than(0)),
+              &NumericsConfig::alm_force_tolerance, positive_up_to(1)),
        integer({"max_alm_iterations", "", "§2.3 (ALM)", "ALM iterations per open-close pass"},
-               &NumericsConfig::max_alm_iterations, at_least(1)),
+               &NumericsConfig::max_alm_iterations, interval(1, false, kMaxIterations, false),
+               "the seed needs a few hundred"),
        integer({"max_open_close_iterations", "", "§2.4: outer iterations",
                 "open-close iterations per time step"},
-               &NumericsConfig::max_open_close_iterations, at_least(1)),
+               &NumericsConfig::max_open_close_iterations, interval(1, false, kMaxIterations, false)),
        number({"tie_tolerance", "-", "§2.3 (iii): 0.1 %",
                "relative difference of normal stress below which simultaneous tensile "
                "failures both break"},
-              &NumericsConfig::tie_tolerance, greater_than(0)),
+              &NumericsConfig::tie_tolerance, positive_up_to(1)),
        boolean({"shear_failure_of_intact_joints", "", "§2.3 (ii)",
                 "false: intact joints must fail in tension before they may shear"},
                &NumericsConfig::shear_failure_of_intact_joints),
        number({"min_width_main", "m", "§2.1: 0.5 um",
                "smallest aperture of a wetted joint away from the fracture tips"},
-              &NumericsConfig::min_width_main_m, greater_than(0), ">= min_width_tip"),
+              &NumericsConfig::min_width_main_m, positive_up_to(1), ">= min_width_tip"),
        number({"min_width_tip", "m", "§2.1: 0.1 um",
                "smallest aperture of a wetted joint at a fracture tip"},
-              &NumericsConfig::min_width_tip_m, greater_than(0), "<= min_width_main"),
+              &NumericsConfig::min_width_tip_m, positive_up_to(1), "<= min_width_main"),
        number({"max_closing_fraction", "-", "§2.1: 5 %",
                "largest fraction of its aperture a wetted joint may close in one step"},
               &NumericsConfig::max_closing_fraction, interval(0, true, 1, true)),
        number({"coupling_tolerance", "-", "§2.4, eqs. 2.25-2.26 (erratum 2 in docs/seed_errata.md)",
                "coupled-step stop: relative pressure change and relative mass residual "
                "below it"},
-              &NumericsConfig::coupling_tolerance, greater_than(0)),
+              &NumericsConfig::coupling_tolerance, positive_up_to(1)),
        integer({"max_coupling_iterations", "", "§2.4", "pressure iterations per coupled solve"},
-               &NumericsConfig::max_coupling_iterations, at_least(1)),
+               &NumericsConfig::max_coupling_iterations, interval(1, false, kMaxIterations, false)),
        integer({"max_step_cuts", "", "",
                 "times a step that fails to converge is retried with dt halved before the "
                 "run stops"},
-               &NumericsConfig::max_step_cuts, at_least(0))}};
+               &NumericsConfig::max_step_cuts, interval(0, false, 30, false),
+               "dt / 2^30 is about 1e-9 dt")}};
   return table;
 }
 
@@ -403,10 +413,11 @@ const Table<TimeConfig>& time_table() {
       "`time`",
       "",
       {number({"dt", "s", "Table 3.1: 1 s; Table 5.3: 1 min", "time step"}, &TimeConfig::dt_s,
-              greater_than(0)),
+              positive_up_to(kMaxTime)),
        number({"end_time", "s", "§3.1: 2 steps; Table 4.1: 10 s; Table 5.3: 1 hr",
                "simulated time"},
-              &TimeConfig::end_time_s, greater_than(0), ">= time.dt")}};
+              &TimeConfig::end_time_s, positive_up_to(kMaxTime),
+              ">= time.dt, a whole number of steps of time.dt, at most 1e7 steps")}};
   return table;
 }
 
@@ -416,7 +427,8 @@ const Table<OutputConfig>& output_table() {
       "",
       {integer({"every_steps", "", "",
                 "joint CSV and VTU every n steps and always at the end; 0: end only"},
-               &OutputConfig::every_steps, at_least(0)),
+               &OutputConfig::every_steps, interval(0, false, kMaxSteps, false),
+               "the most steps a run may have"),
        boolean({"vtu", "", "", "write VTU files"}, &OutputConfig::vtu)}};
   return table;
 }
@@ -456,7 +468,7 @@ const Table<CaseConfig>& case_table() {
        map_list({"point_loads", "", "", "concentrated forces"}, &CaseConfig::point_loads,
                 &point_load_table, 0, "none"),
        point({"body_force", "N/m^3", "", "body force per unit volume, e.g. [0, -rho g]"},
-             &CaseConfig::body_force_N_m3, "any"),
+             &CaseConfig::body_force_N_m3, "1000 g in rock; each component", magnitude_up_to(kMaxBodyForce)),
        fixed_point_list({"fixed_points", "m", "§3.3, §5.2: outer boundary fixed at corners",
                          "points held fixed (stiff springs)"}),
        optional_section({"fluid", "", "Table 3.1: fluid parameters",

@@ -18,6 +18,9 @@ Field<LoadRampConfig> history_list(Doc d) {
     for (std::size_t i = 0; i < n.size(); ++i) {
       const Vec2 p = read_point(r, n[i], item_key(key, i));
       if (p.x() < 0) r.fail(n[i], item_key(key, i), "time must be >= 0 (got " + format_number(p.x()) + ")");
+      if (p.x() > kMaxTime || std::abs(p.y()) > kMaxStress)
+        r.fail(n[i], item_key(key, i), "must have t <= " + format_number(kMaxTime) + " s and |s| <= " +
+                                           format_number(kMaxStress) + " Pa (got " + format_point(p) + ")");
       if (!points.empty() && p.x() <= points.back().x())
         r.fail(n[i], item_key(key, i),
                "times must increase (got " + format_number(p.x()) + " after " + format_number(points.back().x()) + ")");
@@ -25,13 +28,14 @@ Field<LoadRampConfig> history_list(Doc d) {
     }
     out.history = std::move(points);
   };
-  return {key_doc(d, "list of [t, s]", "none", "t >= 0 and increasing; at least 2 points"), read};
+  return {key_doc(d, "list of [t, s]", "none", "t in [0, 1e10] and increasing, s in [-1e10, 1e10]; 2 to 100000 points"), read};
 }
 
 /// `stop_joints`: names of fractures or breakable patterns.
 Field<LoadRampConfig> name_list(Doc d) {
   auto read = [](FileReader& r, const YAML::Node& n, const std::string& key, LoadRampConfig& out) {
     if (!n.IsSequence()) r.fail(n, key, "expected a list of names (got " + describe(n) + ")");
+    check_item_count(r, n, key);
     std::vector<std::string> names;
     for (std::size_t i = 0; i < n.size(); ++i) names.push_back(read_string(r, n[i], item_key(key, i)));
     out.stop_joints = std::move(names);
@@ -51,21 +55,21 @@ const Table<LoadRampConfig>& load_ramp_table() {
       "after the last level; `time.end_time` is not used. summary.json reports the level of the "
       "first bond failure and of the stop condition.",
       {number({"sxx", "-", "eq. 4.26: sin^2 beta", "far-field sxx per unit of s"}, &LoadRampConfig::sxx,
-              any_value()),
+              magnitude_up_to(1e3)),
        number({"syy", "-", "§4.2: tension normal to the crack; eq. 4.26: cos^2 beta",
                "far-field syy per unit of s"},
-              &LoadRampConfig::syy, any_value()),
+              &LoadRampConfig::syy, magnitude_up_to(1e3)),
        number({"sxy", "-", "§4.3: far-field shear; eq. 4.26: sin beta cos beta", "far-field sxy per unit of s"},
-              &LoadRampConfig::sxy, any_value()),
+              &LoadRampConfig::sxy, magnitude_up_to(1e3)),
        choice_list({"sides", "", "§4.2: boundaries parallel to the crack", "sides of domain.outer the ramp loads"},
                    &LoadRampConfig::sides, {"left", "right", "bottom", "top"}),
        optional_number({"start", "Pa", "", "magnitude s of the first level"}, &LoadRampConfig::start_Pa,
-                       any_value(), "0"),
+                       magnitude_up_to(kMaxStress), "0"),
        optional_number({"increment", "Pa", "§4.2: 2 kPa for T0 = 1 MPa, 10 kPa for T0 = 5 MPa",
                         "step of s between levels"},
-                       &LoadRampConfig::increment_Pa, greater_than(0), "none"),
+                       &LoadRampConfig::increment_Pa, positive_up_to(kMaxStress), "none"),
        optional_number({"maximum", "Pa", "", "largest s; the last level"}, &LoadRampConfig::maximum_Pa,
-                       any_value(), "none"),
+                       magnitude_up_to(kMaxStress), "none"),
        history_list({"history", "s, Pa", "",
                      "piecewise-linear s(t) instead of start/increment/maximum, sampled at t = dt, 2 dt, "
                      "... up to its last time"}),
@@ -91,7 +95,7 @@ const Table<LoadRampConfig>& load_ramp_table() {
               "lies on each side of this point along crack_direction"},
              &LoadRampConfig::crack_centre, "inside domain.outer"),
        point({"crack_direction", "-", "", "failed_both_sides: direction of the crack"},
-             &LoadRampConfig::crack_direction, "non-zero")}};
+             &LoadRampConfig::crack_direction, "non-zero, each component", magnitude_up_to(1e3))}};
   return table;
 }
 

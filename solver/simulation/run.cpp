@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "io/output.hpp"
 #include "simulation/checkpoint.hpp"
+#include "simulation/field_checks.hpp"
 #include "simulation/run_record.hpp"
 #include "simulation/snapshots.hpp"
 
@@ -139,6 +140,7 @@ RunResult run(Model& model, const RunOptions& options) {
     StepStatistics st;
     try {
       st = model.step->advance(time.dt_s, model.config.numerics.max_step_cuts);
+      check_fields_finite(*model.system, model.flow.get(), step);
     } catch (const ConvergenceError& e) {
       char where[128];
       if (ramp)

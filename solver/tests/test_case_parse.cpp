@@ -131,13 +131,13 @@ TEST(CaseFileParse, SeedGriffithExampleMatchesTable31) {
   EXPECT_EQ(c.time.end_time_s, 2.0);
 }
 
-TEST(CaseFileParse, EmptyFileGivesStructDefaults) {
-  const CaseConfig c = load_case_text("", "empty.yaml");
+TEST(CaseFileParse, TitleOnlyGivesStructDefaults) {
+  const CaseConfig c = load_case_text("title: defaults\n", "empty.yaml");
   const CaseConfig d;
   EXPECT_EQ(c.file, "empty.yaml");
   EXPECT_EQ(c.mesh_file, "empty.yaml");
   EXPECT_EQ(c.mesh.line, 0);
-  EXPECT_EQ(c.title, "");
+  EXPECT_EQ(c.title, "defaults");
   EXPECT_EQ(c.domain.outer.xmin, d.domain.outer.xmin);
   EXPECT_EQ(c.domain.outer.ymax, d.domain.outer.ymax);
   EXPECT_FALSE(c.domain.inner.has_value());

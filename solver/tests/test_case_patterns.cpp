@@ -223,7 +223,7 @@ TEST(BreakablePatterns, KeyErrors) {
                     3, "breakable_patterns[0].breakable", "expected a boolean");
   expect_text_error(
       head + "  - {" + region + ", cell_size: 2, lines: [vertical], tensile_strength: -1}\n", 3,
-      "breakable_patterns[0].tensile_strength", "must be >= 0 (got -1)");
+      "breakable_patterns[0].tensile_strength", "must be in [0, 1e13] (got -1)");
   expect_text_error(
       head + "  - {" + region + ", cell_size: 2, lines: [vertical], friction_angle: 90}\n", 3,
       "breakable_patterns[0].friction_angle", "[0, 90)");

@@ -1,0 +1,232 @@
+// Case files that are malformed or extreme: YAML that would mean something other than
+// what was written, values far outside any plausible range, runs too long to make
+// sense, lists too large to read, and fields that turn into NaN while running. Each is
+// refused with the file, line, key and rule, or read and run correctly.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "io/case_config.hpp"
+#include "simulation/field_checks.hpp"
+#include "simulation/model.hpp"
+#include "simulation/run.hpp"
+#include "test_case_support.hpp"
+
+namespace hfdda::io {
+namespace {
+
+using namespace case_test;
+
+CaseConfig load(const std::string& text) { return load_case_text(text, "case.yaml"); }
+
+// --- YAML that means something else -----------------------------------------
+
+TEST(CaseFileHostile, UnclosedQuoteIsRefused) {
+  // yaml-cpp reads the rest of the file into the title and runs the default case.
+  expect_text_error("title: \"abc\nmesh: {cell_size: 2}\n", 1, "(syntax)", "unclosed quote");
+  expect_text_error("title: x\nmaterials:\n  - {name: 'rock}\n", 3, "(syntax)", "unclosed quote");
+}
+
+TEST(CaseFileHostile, QuotesThatAreNotUnclosedStillRead) {
+  EXPECT_EQ(load("title: Griffith's crack\n").title, "Griffith's crack");
+  EXPECT_EQ(load("title: a-'b\n").title, "a-'b");
+  EXPECT_EQ(load("{\"title\":\"json\"}\n").title, "json");
+  EXPECT_EQ(load("title: 'it''s \"here\"'  # comment's\n").title, "it's \"here\"");
+  EXPECT_EQ(load("title: |\n  a \"quote' left open\n").title, "a \"quote' left open\n");
+  const CaseConfig c = load(
+      "domain:\n  outer: {xmin: -10, xmax: 10,\n          ymin: -5, ymax: 5}\nmesh: {cell_size: 2}\n");
+  EXPECT_EQ(c.domain.outer.ymax, 5);
+}
+
+TEST(CaseFileHostile, SecondDocumentIsRefused) {
+  expect_text_error("title: a\n---\ntitle: b\n", 2, "(document)", "second YAML document");
+  EXPECT_EQ(load("---\ntitle: a\n").title, "a");  // a leading marker is fine
+}
+
+TEST(CaseFileHostile, DocumentEndInTheMiddleIsRefused) {
+  expect_text_error("title: a\n...\ntime: {dt: 0.5}\n", 2, "(document)", "'...' ends the YAML document");
+  EXPECT_EQ(load("title: a\n...\n# trailing comment\n").title, "a");
+}
+
+TEST(CaseFileHostile, EmptyFileIsRefused) {
+  expect_text_error("", 0, "(document)", "empty case file");
+  expect_text_error("# nothing but a comment\n\n", 0, "(document)", "empty case file");
+  expect_text_error("---\n", 0, "(document)", "empty case file");
+  expect_text_error("~\n", 0, "(document)", "empty case file");
+}
+
+TEST(CaseFileHostile, TagsAreRefused) {
+  expect_text_error("title: !!str 1.0\n", 1, "title", "YAML tags such as '!!str' are not allowed");
+  expect_text_error("time:\n  dt: !!float 1\n", 2, "time.dt", "'!!float'");
+  expect_text_error("mesh: !custom {cell_size: 2}\n", 1, "mesh", "'!custom'");
+}
+
+TEST(CaseFileHostile, AnchorsAndAliasesAreRefused) {
+  expect_text_error("a: &x [1, 2]\n", 1, "(syntax)", "anchors and aliases ('&')");
+  expect_text_error("title: x\nb: [*x, *x]\n", 2, "(syntax)", "('*')");
+  EXPECT_EQ(load("title: R&D *draft*\n").title, "R&D *draft*");
+}
+
+TEST(CaseFileHostile, CarriageReturnLineEndingsAreRead) {
+  for (const std::string eol : {"\r", "\r\n"}) {
+    const CaseConfig c = load("title: cr" + eol + "time:" + eol + "  dt: 0.5" + eol +
+                                        "  end_time: 2" + eol + "mesh: {cell_size: 2}" + eol);
+    EXPECT_EQ(c.title, "cr");
+    EXPECT_EQ(c.time.dt_s, 0.5);
+    EXPECT_EQ(c.time.end_time_s, 2.0);
+    EXPECT_EQ(c.mesh.cell_size_m, 2.0);
+  }
+  expect_text_error("title: x\rtime:\r  dt: 0\r", 3, "time.dt", "must be in (0, 1e10]");
+}
+
+TEST(CaseFileHostile, DeepNestingIsRefusedBeforeParsing) {
+  // A million brackets would overflow the stack of the recursive YAML parser.
+  const std::string flow = "title: " + std::string(1000000, '[') + std::string(1000000, ']') + "\n";
+  expect_text_error(flow, 1, "(document)", "nesting too deep: more than 16 levels");
+  std::string block;
+  for (int i = 0; i < 40; ++i) block += std::string(i, ' ') + "k" + std::to_string(i) + ":\n";
+  expect_text_error(block, 17, "(document)", "nesting too deep");
+  std::string dashes = "fixed_points:\n  " ;
+  for (int i = 0; i < 30; ++i) dashes += "- ";
+  expect_text_error(dashes + "1\n", 2, "(document)", "nesting too deep");
+}
+
+TEST(CaseFileHostile, KeyTooLongIsRefused) {
+  const std::string key(300, 'k');
+  const auto error = error_of_text("title: x\n" + key + ": 1\n");
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->line(), 2);
+  EXPECT_NE(error->rule().find("key too long: 300 characters; at most 64"), std::string::npos);
+  EXPECT_LE(error->key().size(), 40u);
+}
+
+TEST(CaseFileHostile, DecimalCommaIsNamed) {
+  expect_text_error("time:\n  dt: 1,5\n", 2, "time.dt", "decimal comma? write 1.5 (got '1,5')");
+  expect_text_error("numerics:\n  max_step_cuts: 3,0\n", 2, "numerics.max_step_cuts", "decimal comma?");
+  expect_text_error("time:\n  dt: 1,5,2\n", 2, "time.dt", "expected a finite number (got '1,5,2')");
+}
+
+TEST(CaseFileHostile, InvalidUtf8IsRefusedUpFront) {
+  expect_text_error("title: caf\xe9 noir\n", 1, "title", "is not valid UTF-8 text (byte 0xE9 at character 4)");
+  expect_text_error("materials:\n  - {name: \"r\xc3\"}\n", 2, "materials[0].name", "not valid UTF-8");
+  EXPECT_EQ(load("title: caf\xc3\xa9\n").title, "caf\xc3\xa9");
+}
+
+TEST(CaseFileHostile, EchoedValuesAreCut) {
+  const std::string word(500, 'w');
+  const auto error = error_of_text("mesh: {type: " + word + "}\n");
+  ASSERT_TRUE(error);
+  EXPECT_NE(error->rule().find(std::string(77, 'w') + "...'"), std::string::npos) << error->rule();
+  EXPECT_EQ(error->rule().find(std::string(81, 'w')), std::string::npos);
+  const auto missing = error_of_text("extends: " + std::string(300, 'b') + ".yaml\n");
+  ASSERT_TRUE(missing);
+  EXPECT_LT(missing->rule().size(), 150u) << missing->rule();
+}
+
+// --- Plausible bounds ---------------------------------------------------------
+
+TEST(CaseFileHostile, PhysicalParametersHavePlausibleBounds) {
+  expect_text_error("materials:\n  - {youngs_modulus: 1e308}\n", 2, "materials[0].youngs_modulus",
+                    "must be in (0, 1e13] (got 1e308)");
+  expect_text_error("contact: {normal_stiffness: 1e308}\n", 1, "contact.normal_stiffness",
+                    "must be in (0, 1e6]");
+  expect_text_error("far_field: {syy: -1e308}\n", 1, "far_field.syy", "must be in [-1e10, 1e10]");
+  expect_text_error("far_field: {sxx: 1e200}\n", 1, "far_field.sxx", "must be in [-1e10, 1e10]");
+  expect_text_error("fractures:\n  - {from: [0, 0], to: [1, 0], pressure: 1e200}\n", 2,
+                    "fractures[0].pressure", "must be in [0, 1e10]");
+  expect_text_error("body_force: [0, 1e300]\n", 1, "body_force[1]", "must be in [-1e7, 1e7]");
+  expect_text_error("fluid: {bulk_modulus: 1e300}\n", 1, "fluid.bulk_modulus", "(0, 1e13]");
+  expect_text_error("domain:\n  outer: {xmin: -1e300, xmax: 1, ymin: 0, ymax: 1}\n", 2,
+                    "domain.outer.xmin", "[-1e7, 1e7]");
+}
+
+TEST(CaseFileHostile, EveryNumberIsFinite) {
+  expect_text_error("far_field: {syy: .nan}\n", 1, "far_field.syy", "expected a finite number");
+  expect_text_error("materials:\n  - {density: -.inf}\n", 2, "materials[0].density", "finite");
+  expect_text_error("point_loads:\n  - {force: [.inf, 0]}\n", 2, "point_loads[0].force", "finite");
+}
+
+TEST(CaseFileHostile, LengthsStayWithinTheDomain) {
+  expect_text_error("mesh:\n  cell_size: 1e6\n", 2, "mesh.cell_size",
+                    "must be <= the larger side of domain.outer, 100 m (got 1e6)");
+  expect_text_error("mesh:\n  cell_size: 1e-4\n", 2, "mesh.cell_size", "would make about 1e12 cells");
+  expect_text_error("mesh:\n  type: delaunay\n  max_area_inner: 1e-9\n", 3, "mesh.max_area_inner",
+                    "cells; at most 1e7");
+  expect_text_error("contact:\n  vertex_vertex_activation: 1e5\n", 2, "contact.vertex_vertex_activation",
+                    "<= the larger side");
+}
+
+// --- Time and counts ------------------------------------------------------------
+
+TEST(CaseFileHostile, StepCountIsBounded) {
+  expect_text_error("time:\n  dt: 1\n  end_time: 4294967297\n", 3, "time.end_time",
+                    "gives 4294967297 time steps");
+  expect_text_error("time:\n  dt: 1e-300\n", 2, "time.dt", "at most 1e7 are allowed");
+}
+
+TEST(CaseFileHostile, EndTimeIsAWholeNumberOfSteps) {
+  expect_text_error("time:\n  dt: 1\n  end_time: 2.5\n", 3, "time.end_time",
+                    "is not a whole number of time steps (end_time 2.5 s, dt 1 s: 2.5 steps)");
+  expect_text_error("time:\n  dt: 1\n  end_time: 2.5\n", 3, "time.end_time", "e.g. 2 or 3 s");
+  EXPECT_EQ(load("time: {dt: 0.1, end_time: 0.3}\n").time.end_time_s, 0.3);  // rounding
+}
+
+TEST(CaseFileHostile, IntegersHaveUpperBounds) {
+  expect_text_error("numerics: {max_step_cuts: 2147483647}\n", 1, "numerics.max_step_cuts",
+                    "must be in [0, 30]");
+  expect_text_error("numerics: {max_alm_iterations: 2000000}\n", 1, "numerics.max_alm_iterations",
+                    "must be in [1, 1e6]");
+  expect_text_error("output: {every_steps: 100000000}\n", 1, "output.every_steps", "[0, 1e7]");
+  expect_text_error("numerics: {max_coupling_iterations: 99999999999}\n", 1,
+                    "numerics.max_coupling_iterations", "is far too large (got '99999999999'");
+}
+
+TEST(CaseFileHostile, HugeListsAreRefused) {
+  std::string points = "fixed_points: [";
+  for (int i = 0; i < 10001; ++i) points += "[0, 0], ";
+  points += "[0, 0]]\n";
+  expect_text_error(points, 1, "fixed_points", "has 10002 items; at most 10000 are allowed");
+  std::string probes = "probes:\n";
+  for (int i = 0; i < 10001; ++i) probes += "  - {name: p" + std::to_string(i) + ", at: [0, 0]}\n";
+  expect_text_error(probes, 2, "probes", "at most 10000");
+  std::string many = "title: x\nfractures: [";
+  for (int i = 0; i < 150000; ++i) many += "1, ";
+  expect_text_error(many + "1]\n", 2, "fractures", "a list of 150001 items; at most 100000");
+  const std::string huge = "title: x\n# " + std::string(5u << 20, 'x') + "\n";
+  expect_text_error(huge, 0, "(file)", "at most 4194304 bytes");
+}
+
+// --- Run time: non-finite fields stop the run -----------------------------------
+
+TEST(CaseFileHostile, NonFiniteFieldsStopTheRun) {
+  // Built past the input checks: a modulus no case file may give, which overflows.
+  CaseConfig config = load(
+      "title: overflow\ndomain:\n  outer: {xmin: -4, xmax: 4, ymin: -4, ymax: 4}\n"
+      "mesh: {cell_size: 2}\nfar_field: {syy: -1e6}\ntime: {dt: 1, end_time: 3}\n"
+      "output: {vtu: false}\n");
+  config.far_field.syy_Pa = -1e308;
+  config.far_field.sxx_Pa = 1e308;
+  simulation::Model model = simulation::build_model(config);
+  simulation::RunOptions options;
+  options.output_dir = (std::filesystem::path(testing::TempDir()) / "hfdda_hostile_nan").string();
+  options.quiet = true;
+  std::filesystem::remove_all(options.output_dir);
+  const simulation::RunResult result = simulation::run(model, options);
+  EXPECT_FALSE(result.completed);
+  EXPECT_NE(result.message.find("is not a finite number"), std::string::npos) << result.message;
+  EXPECT_NE(result.message.find("after step 1"), std::string::npos) << result.message;
+  EXPECT_TRUE(std::filesystem::exists(options.output_dir + "/summary.json"));
+  EXPECT_TRUE(std::filesystem::exists(options.output_dir + "/history.csv"));
+}
+
+TEST(CaseFileHostile, FiniteFieldsPass) {
+  simulation::Model model = simulation::build_model(load(
+      "title: fine\ndomain:\n  outer: {xmin: -4, xmax: 4, ymin: -4, ymax: 4}\nmesh: {cell_size: 2}\n"));
+  EXPECT_NO_THROW(simulation::check_fields_finite(*model.system, model.flow.get(), 0));
+}
+
+}  // namespace
+}  // namespace hfdda::io
