@@ -240,7 +240,10 @@ void study_metrics(StudyOutcome& s) {
   text = "time_s,wellbore_pressure_Pa,half_length_m,aperture_28p5mm_m,pressure_15mm_Pa,pressure_41mm_Pa\n";
   for (std::size_t j = 0; j < peer_series[0].t.size(); ++j) {
     text += number(peer_series[0].t[j]);
-    for (const Series& ps : peer_series) text += "," + number(ps.v[j]);
+    for (const Series& ps : peer_series) {
+      text += ',';  // appended: `"," + std::string` trips a false -Wrestrict in GCC 12
+      text += number(ps.v[j]);
+    }
     text += "\n";
   }
   s.metrics.files["peer.csv"] = text;
