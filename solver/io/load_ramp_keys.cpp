@@ -85,7 +85,9 @@ const Table<LoadRampConfig>& load_ramp_table() {
                                    {"broken_fraction", "broken_fraction"},
                                    {"failed_both_sides", "failed_both_sides"}}),
        name_list({"stop_joints", "", "§4.2, §4.3: the 24 m path each side",
-                  "broken_fraction: the joints of these fractures or breakable patterns"}),
+                  "broken_fraction: the joints of these fractures or breakable patterns (a joint on several "
+                  "fractures belongs to the last one listed: an open crack written after its path is not part "
+                  "of the path)"}),
        number({"stop_fraction", "-", "§4.2, §4.3: 75 %",
                "broken_fraction: stop once the broken length of stop_joints exceeds this fraction of "
                "their length (a bond broken in tension or shear counts)"},
