@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "core/memory_policy.hpp"
 #include "dda/thread_policy.hpp"
 #include "io/case_config.hpp"
 #include "simulation/checkpoint.hpp"
@@ -127,7 +128,8 @@ int run_command(int argc, char** argv, bool check_only) {
   if (!check_only && out_dir.empty()) return usage_error("run needs --out DIR");
   if (force && restart) return usage_error("--force and --restart exclude each other");
   const std::string thread_note = hfdda::dda::apply_thread_policy(threads);
-  if (!quiet && !check_only) std::fprintf(stderr, "%s\n", thread_note.c_str());
+  const std::string memory_note = hfdda::core::retain_freed_memory();
+  if (!quiet && !check_only) std::fprintf(stderr, "%s; %s\n", thread_note.c_str(), memory_note.c_str());
 
   const hfdda::io::CaseConfig config = hfdda::io::load_case_file(case_file);
   if (!check_only) {

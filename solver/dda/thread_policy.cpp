@@ -8,6 +8,8 @@
 
 namespace hfdda::dda {
 
+const char* serial_region_note();  // openmp_serial_regions.cpp
+
 int threads_from_environment() {
   const char* text = std::getenv("HFDDA_THREADS");
   if (text == nullptr || *text == '\0') return 1;
@@ -32,7 +34,8 @@ std::string apply_thread_policy(int threads) {
     set(threads);
     blas = "OpenBLAS " + std::to_string(threads);
   }
-  return "threads: " + std::to_string(threads) + " (CHOLMOD OpenMP " + std::to_string(threads) + ", " + blas + ")";
+  return "threads: " + std::to_string(threads) + " (CHOLMOD OpenMP " + std::to_string(threads) + ", " + blas +
+         (threads == 1 ? std::string(", ") + serial_region_note() : std::string()) + ")";
 }
 
 }  // namespace hfdda::dda

@@ -1,5 +1,6 @@
 #include "harness.hpp"
 
+#include "core/memory_policy.hpp"
 #include "dda/thread_policy.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -450,7 +451,8 @@ int run_harness(int argc, char** argv, const CaseDefinition& def) {
   try {
     const auto runner_start = std::chrono::steady_clock::now();
     if (!def.metrics) throw std::runtime_error("the case defines no metrics function");
-    std::fprintf(stderr, "%s\n", dda::apply_thread_policy(dda::threads_from_environment()).c_str());
+    std::fprintf(stderr, "%s; %s\n", dda::apply_thread_policy(dda::threads_from_environment()).c_str(),
+                 core::retain_freed_memory().c_str());
     const Study study = load_study(options->case_dir + "/study.yaml");
     fs::create_directories(out_dir);
 

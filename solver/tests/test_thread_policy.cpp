@@ -1,0 +1,70 @@
+// The thread policy: one thread runs OpenMP regions inline (no libgomp team, so no
+// futex call per region, solver/dda/openmp_serial_regions.cpp); more threads go to
+// libgomp unchanged; the CHOLMOD factorisation is the same either way.
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <atomic>
+#include <stdexcept>
+
+#include "dda/thread_policy.hpp"
+
+namespace hfdda::dda {
+namespace {
+
+struct RegionRecord {
+  int bodies = 0;
+  int team_size = 0;
+  int level = -1;  // nesting level of parallel regions, inactive ones included
+  long iterations = 0;
+};
+
+RegionRecord run_region(int requested_threads) {
+  std::atomic<int> bodies{0};
+  std::atomic<long> iterations{0};
+  RegionRecord r;
+#pragma omp parallel num_threads(requested_threads)
+  {
+    ++bodies;
+#pragma omp single
+    {
+      r.team_size = omp_get_num_threads();
+      r.level = omp_get_level();
+    }
+#pragma omp for schedule(dynamic, 7)
+    for (int i = 0; i < 1000; ++i) iterations += 1;
+  }
+  r.bodies = bodies;
+  r.iterations = iterations;
+  return r;
+}
+
+class ThreadPolicy : public ::testing::Test {
+ protected:
+  void TearDown() override { apply_thread_policy(1); }
+};
+
+TEST_F(ThreadPolicy, OneThreadRunsRegionsInlineAndCompletely) {
+  const std::string note = apply_thread_policy(1);
+  EXPECT_NE(note.find("inline"), std::string::npos) << note;
+  const RegionRecord r = run_region(4);  // CHOLMOD asks for 4 whatever the setting
+  EXPECT_EQ(r.bodies, 1);
+  EXPECT_EQ(r.team_size, 1);
+  EXPECT_EQ(r.level, 0);  // no team was formed: libgomp's own team of one has level 1
+  EXPECT_EQ(r.iterations, 1000);
+}
+
+TEST_F(ThreadPolicy, TwoThreadsStillFormATeam) {
+  apply_thread_policy(2);
+  const RegionRecord r = run_region(2);
+  EXPECT_EQ(r.bodies, 2);
+  EXPECT_EQ(r.team_size, 2);
+  EXPECT_EQ(r.level, 1);
+  EXPECT_EQ(r.iterations, 1000);
+}
+
+TEST_F(ThreadPolicy, RefusesZeroThreads) { EXPECT_THROW(apply_thread_policy(0), std::invalid_argument); }
+
+}  // namespace
+}  // namespace hfdda::dda
