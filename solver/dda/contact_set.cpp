@@ -56,6 +56,9 @@ void add_vertex_vertex_candidates(const mesh::Mesh& mesh, std::vector<Contact>& 
     joined.emplace(joint.point_p, lo, hi);
     joined.emplace(joint.point_q, lo, hi);
   }
+  std::size_t n_candidates = 0;  // reserve exactly: the list is the largest array of a model
+  for (const auto& around : blocks_at_point) n_candidates += around.size() * (around.size() - 1) / 2;
+  contacts.reserve(contacts.size() + n_candidates);
   for (int p = 0; p < static_cast<int>(blocks_at_point.size()); ++p) {
     const auto& around = blocks_at_point[p];
     for (std::size_t i = 0; i < around.size(); ++i)
@@ -101,8 +104,25 @@ void ContactSet::add_coupling(int block_a, int block_c) {
 }
 
 void ContactSet::begin_step() {
-  at_start_ = contacts_;
+  joints_at_start_.assign(contacts_.begin(), contacts_.begin() + n_joint_contacts_);
+  vertex_vertex_at_start_.clear();
+  vertex_vertex_remembered_.assign(contacts_.size() - n_joint_contacts_, 0);
+  for (int ci = n_joint_contacts_; ci < size(); ++ci)
+    if (contacts_[ci].vertex_vertex_active) remember(ci);
   flips_.assign(contacts_.size(), 0);
+}
+
+void ContactSet::remember(int ci) {
+  if (ci < n_joint_contacts_) return;  // all copied at the start of the step
+  char& remembered = vertex_vertex_remembered_[ci - n_joint_contacts_];
+  if (remembered) return;
+  remembered = 1;
+  vertex_vertex_at_start_.emplace_back(ci, contacts_[ci]);
+}
+
+void ContactSet::roll_back() {
+  std::copy(joints_at_start_.begin(), joints_at_start_.end(), contacts_.begin());
+  for (const auto& [ci, contact] : vertex_vertex_at_start_) contacts_[ci] = contact;
 }
 
 bool ContactSet::has_open_neighbour(int contact) const {

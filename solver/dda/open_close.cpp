@@ -181,6 +181,7 @@ int BlockSystem::apply_state_changes(const Eigen::VectorXd& d, const std::vector
   int applied = 0;
   first_change_.clear();
   for (const ContactChange& ch : changes) {
+    contacts_.remember(ch.contact);
     Contact& c = contacts_[ch.contact];
     if (first_change_.empty()) describe_first_change(c, ch.to);
     if (ch.friction_sign != 0.0) c.friction_sign = ch.friction_sign;
