@@ -4,7 +4,7 @@
 // apply_thread_policy() once at start-up, with the value of `--threads N` or of the
 // environment variable HFDDA_THREADS (default 1).
 //
-// Why the default is 1: CHOLMOD 5.12 asks for 4 OpenMP threads in its supernodal
+// Why the default is 1: CHOLMOD 3.0 (SuiteSparse 5.12) asks for 4 OpenMP threads in its supernodal
 // factorisation whatever OMP_NUM_THREADS says, and idle OpenMP and OpenBLAS threads spin
 // in futex and sched_yield calls. On the 2-core machines this code targets, a Mode I load
 // ramp of 3,646 blocks spent 287 s in 216 factorisations with them and 33 s without
