@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -244,7 +245,8 @@ void FlowNetwork::evaluate_storage(const Eigen::VectorXd& x, Evaluation& out) co
   out.residual.resize(n);
   for (int i = 0; i < n; ++i) {
     out.storage[i] = fill_density(x[i], i) * out.volume[i];
-    out.residual[i] = out.storage[i] - old_mass_[i] + homotopy_ * (out.density[i] * leak_volume_[i] - injected_[i]);
+    out.residual[i] = out.storage[i] - old_mass_[i] +
+                      homotopy_ * (wetted_fraction(x[i], i) * out.density[i] * leak_volume_[i] - injected_[i]);
   }
 }
 
@@ -277,7 +279,7 @@ void FlowNetwork::evaluate_jacobian(const Eigen::VectorXd& x, const Eigen::Matri
   const double drho = fluid_.density_derivative();
   Eigen::MatrixXd& jac = out.jacobian;
   jac.setZero(n, n);
-  for (int i = 0; i < n; ++i) jac(i, i) += homotopy_ * drho * leak_volume_[i];
+  for (int i = 0; i < n; ++i) jac(i, i) += homotopy_ * drho * wetted_fraction(x[i], i) * leak_volume_[i];
   for (int k = 0; k < nf; ++k) {
     const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
     for (int end = 0; end < 2; ++end) {
@@ -288,7 +290,10 @@ void FlowNetwork::evaluate_jacobian(const Eigen::VectorXd& x, const Eigen::Matri
   }
   add_flow_jacobian(s, out);
   for (int i = 0; i < n; ++i) jac.col(i) *= out.pressure_slope[i];
-  for (int i = 0; i < n; ++i) jac(i, i) += fill_density_slope(x[i], i) * out.volume[i];  // storage
+  for (int i = 0; i < n; ++i) {
+    jac(i, i) += fill_density_slope(x[i], i) * out.volume[i];  // storage
+    if (x[i] < 0.0) jac(i, i) += homotopy_ * out.density[i] * leak_volume_[i] / fill_scale_[i];  // wetted part
+  }
 }
 
 void FlowNetwork::add_flow_jacobian(const Eigen::MatrixXd& s, Evaluation& out) const {
@@ -321,6 +326,18 @@ double FlowNetwork::fill_density(double y, int i) const {
   return y >= 0.0 ? fluid_.density(y) : fluid_.density(0.0) * (1.0 + y / fill_scale_[i]);
 }
 
+double FlowNetwork::residual_round_off() const {
+  const double gross = old_mass_.sum() + injected_.sum() + fluid_.density(0.0) * leak_volume_.sum();
+  return 64.0 * std::numeric_limits<double>::epsilon() * gross;
+}
+
+double FlowNetwork::wetted_fraction(double y, int i) const {
+  // Leak-off leaves through the wetted walls: all of them at a full node, the filled
+  // fraction of them at a partly filled one. So a node cannot lose more fluid than it
+  // receives: as it empties, its leak-off vanishes with its content.
+  return y >= 0.0 ? 1.0 : 1.0 + y / fill_scale_[i];
+}
+
 double FlowNetwork::fill_density_slope(double y, int i) const {
   return y >= 0.0 ? fluid_.density_derivative() : fluid_.density(0.0) / fill_scale_[i];
 }
@@ -349,7 +366,9 @@ void FlowNetwork::rescale_partly_filled_nodes(Evaluation& ev) {
     const double scale = std::clamp(rho0 * ev.volume[i] / conductance[i],
                                     std::max(kMinFillScale, kPressureRounding / deficit), fluid_.bulk_modulus_Pa);
     if (scale == fill_scale_[i]) continue;
-    ev.jacobian(i, i) += rho0 * ev.volume[i] * (1.0 / scale - 1.0 / fill_scale_[i]);
+    // Storage and leak-off through the wetted walls both scale with the fill fraction.
+    const double filled_slope = rho0 * ev.volume[i] + homotopy_ * ev.density[i] * leak_volume_[i];
+    ev.jacobian(i, i) += filled_slope * (1.0 / scale - 1.0 / fill_scale_[i]);
     fill_scale_[i] = scale;
     y = -deficit * scale;
   }
@@ -368,7 +387,8 @@ Eigen::VectorXd FlowNetwork::self_capacity(const Eigen::VectorXd& x, const Eigen
     capacity[b] += std::max(0.0, fill_density(x[b], b) * half * ev.slope[2 * k + 1] * s(2 * k + 1, b));
   }
   for (Eigen::Index i = 0; i < x.size(); ++i)
-    if (x[i] < 0.0) capacity[i] += fluid_.density(0.0) * ev.volume[i] / fill_scale_[i];
+    if (x[i] < 0.0)
+      capacity[i] += (fluid_.density(0.0) * ev.volume[i] + homotopy_ * ev.density[i] * leak_volume_[i]) / fill_scale_[i];
   return capacity;
 }
 
@@ -377,6 +397,9 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
   const int n = static_cast<int>(trial_nodes_.size());
   const double mass_scale = std::max(old_mass_.sum() + injected_.sum(), 1e-300);
   const double tol = settings_.tolerance;
+  // Below this a residual is round-off of its largest terms: with a strong leak-off,
+  // rho Vleak can exceed the fluid present by orders of magnitude.
+  const double round_off = residual_round_off();
   Evaluation ev, trial;
   Eigen::VectorXd& x = unknowns_;
   auto solve_linear = [&](const Eigen::MatrixXd& jacobian) {
@@ -396,9 +419,9 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
   for (int it = 0; it < max_iterations; ++it) {
     evaluate(x, base, s, ev, true);
     rescale_partly_filled_nodes(ev);
-    progress.residual = ev.residual.cwiseAbs().maxCoeff() / mass_scale;
+    progress.residual = std::max(0.0, ev.residual.cwiseAbs().maxCoeff() - round_off) / mass_scale;
     const double merit = ev.residual.norm();
-    const bool converged_residual = merit <= tol * mass_scale;
+    const bool converged_residual = merit <= tol * mass_scale + round_off;
     Eigen::VectorXd dx;
     double alpha = 1.0;
     if (pseudo_transient) {
@@ -453,7 +476,8 @@ FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, const Eigen:
   // Mass-conservative update: the stored mass is what flowed in, to round-off.
   pressure_ = ev.pressure;
   aperture_trial_ = ev.aperture;
-  const double round_off = settings_.tolerance * std::max(old_mass_.sum() + injected_.sum(), 1e-300);
+  const double round_off = settings_.tolerance * std::max(old_mass_.sum() + injected_.sum(), 1e-300) +
+                           residual_round_off();
   for (int i = 0; i < n; ++i) {
     mass_new_[i] = ev.storage[i] - ev.residual[i];
     // Stored mass is never negative: a node emptied to within the solve's tolerance
@@ -464,7 +488,7 @@ FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, const Eigen:
                                " kg): more fluid leaves it than it holds");
       mass_new_[i] = 0.0;
     }
-    leak_mass_[i] = ev.density[i] * leak_volume_[i];
+    leak_mass_[i] = wetted_fraction(unknowns_[i], i) * ev.density[i] * leak_volume_[i];
     stats.zero_pressure_nodes += unknowns_[i] < 0.0;
   }
   return stats;

@@ -15,7 +15,9 @@
 //   Vleak = Carter leak-off: both walls of each fracture leak C_L / sqrt(t - t0),
 //           half of the fracture charged to each end node, integrated exactly over
 //           the step: C_L L 2 (sqrt(t+dt - t0) - sqrt(t - t0))
-//           (erratum 4 in docs/seed_errata.md)
+//           (erratum 4 in docs/seed_errata.md); at a zero-pressure node only the
+//           wetted walls leak: rho_i Vleak_i times the fill fraction, so a node never
+//           loses more than it receives and its stored mass never goes negative
 //
 // A node whose pressure would be negative becomes a zero-pressure node: p = 0 and its
 // stored mass is solved for instead (seed 2.1, Figure 2.2). Both kinds share one
@@ -180,6 +182,10 @@ class FlowNetwork {
   /// Stored mass per volume of a node in fill state y, and its derivative in y.
   double fill_density(double y, int node) const;
   double fill_density_slope(double y, int node) const;
+  /// Fraction of a node's fracture walls that the fluid wets in fill state y (1 if full).
+  double wetted_fraction(double y, int node) const;
+  /// Round-off of the step's mass balance [kg]: 64 eps times its largest terms.
+  double residual_round_off() const;
   /// Committed form of a trial node's fill state: the pressure [Pa] if full, else the
   /// fill fraction minus one, in [-1, 0) (independent of the fill scale).
   double state_of_unknown(int node) const;

@@ -265,7 +265,8 @@ const Table<FluidConfig>& fluid_table() {
                "Carter coefficient C_L of one fracture wall; 0: no leak-off. Both walls "
                "leak: a wetted joint of length L loses 2 C_L L / sqrt(t - t0) per metre of "
                "depth, t0 the time fluid reached it (the seed's eq. 2.3 counts one wall; "
-               "erratum 4 in docs/seed_errata.md)"},
+               "erratum 4 in docs/seed_errata.md); a partly filled node leaks through its "
+               "wetted fraction only, so no node loses more than it holds"},
               &FluidConfig::leak_off_coefficient_m_sqrt_s, zero_to(1))}};
   return table;
 }
