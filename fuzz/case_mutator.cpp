@@ -104,8 +104,9 @@ std::size_t insertion_point(const std::string& text, Rng& rng) {
   }
 }
 
+/// Brackets or maps inside each other, below and above the reader's limit of 16 levels.
 std::string nesting(Rng& rng) {
-  const std::size_t depth = 10 + rng.below(40);
+  const std::size_t depth = 1 + rng.below(48);
   if (rng.chance(0.5)) return std::string(depth, '[') + "1" + std::string(depth, ']');
   std::string map;
   for (std::size_t i = 0; i < depth; ++i) map += "{k: ";
@@ -218,9 +219,10 @@ std::string CaseMutator::mutate_once(std::string& text, Rng& rng) const {
       return "deep_nesting";
     }
     case 10: {
-      // A long key or a long value: the reader clips what it echoes.
+      // A long key (the limit is 64 characters) or a long value: the reader clips what it
+      // echoes.
       const std::size_t at = lines.empty() ? 0 : lines[rng.below(lines.size())].first;
-      const std::string line = rng.chance(0.5) ? std::string(65 + rng.below(100), 'k') + ": 1\n"
+      const std::string line = rng.chance(0.5) ? std::string(50 + rng.below(100), 'k') + ": 1\n"
                                                : "title: " + std::string(500 + rng.below(3000), 'v') + "\n";
       text.insert(at, line);
       return "long_token";

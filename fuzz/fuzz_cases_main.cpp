@@ -139,6 +139,7 @@ void write_file(const fs::path& path, const std::string& text) {
 struct Tally {
   std::uint64_t inputs = 0, bytes = 0, findings = 0;
   std::uint64_t accepted = 0, models = 0, known = 0, refused_read = 0, refused_model = 0;
+  std::size_t longest_rule = 0;  ///< characters; the contract bounds the whole message
   std::map<std::string, std::uint64_t> keys;   ///< "stage key" of refusals, list indices left out
   std::map<std::string, std::uint64_t> rules;  ///< the start of the rules of refusals
   std::map<std::string, std::uint64_t> lines;  ///< line ranges of read refusals
@@ -155,6 +156,7 @@ struct Tally {
       (r.stage == "model" ? refused_model : refused_read)++;
       ++keys[r.stage + "  " + without_indices(r.key)];
       ++rules[rule_kind(r.rule)];
+      longest_rule = std::max(longest_rule, r.rule.size());
       if (r.stage == "read")
         ++lines[r.line == 0   ? "0 (whole file)"
                 : r.line == 1 ? "1"
@@ -174,6 +176,7 @@ struct Tally {
                 "reader: %llu; by the model builder: %llu; findings: %llu\n",
                 as_ull(accepted), as_ull(models), as_ull(known), as_ull(refused_read), as_ull(refused_model),
                 as_ull(findings));
+    std::printf("longest rule: %zu characters\n", longest_rule);
     std::printf("refusals by line:");
     for (const auto& [range, n] : lines) std::printf("  %s: %llu", range.c_str(), as_ull(n));
     std::printf("\n");
