@@ -1,0 +1,259 @@
+// The fuzz target (case_reader_target.hpp).
+
+#include "case_reader_target.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <typeinfo>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "simulation/model.hpp"
+
+namespace hfdda::fuzz {
+
+namespace {
+
+bool finite(const Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
+
+bool proper(const Rect& r) {
+  return std::isfinite(r.xmin) && std::isfinite(r.xmax) && std::isfinite(r.ymin) && std::isfinite(r.ymax) &&
+         r.xmax > r.xmin && r.ymax > r.ymin;
+}
+
+/// Cells along one axis of a structured mesh: uniform ones of size h over the fine part,
+/// graded ones (h g, h g^2, ...) over each gap to the outer edge; capped, it is an estimate.
+double structured_cells_along(double outer_a, double outer_b, double fine_a, double fine_b, double h,
+                              double growth) {
+  double cells = (fine_b - fine_a) / h;
+  for (const double gap : {fine_a - outer_a, outer_b - fine_b}) {
+    double covered = 0.0, step = h;
+    for (int k = 0; covered < gap && k < 100000; ++k) {
+      step *= growth;
+      covered += step;
+      cells += 1.0;
+    }
+  }
+  return cells;
+}
+
+/// Exception text clipped for a report: a finding's message may be the very thing that is
+/// too long.
+std::string clipped(const std::string& text) {
+  constexpr std::size_t kShown = 300;
+  return text.size() <= kShown ? text : text.substr(0, kShown) + "... (" + std::to_string(text.size()) + " chars)";
+}
+
+TargetResult finding(const std::string& stage, const std::string& what) {
+  TargetResult r;
+  r.outcome = Outcome::finding;
+  r.stage = stage;
+  r.rule = what;
+  return r;
+}
+
+/// An InputError is a proper refusal when its message is present, short and located.
+TargetResult refusal(const InputError& e, const std::string& stage, const TargetOptions& options) {
+  const std::string what = e.what();
+  if (what.empty() || e.rule().empty()) return finding(stage, "InputError with an empty message");
+  if (what.size() >= options.max_message_chars)
+    return finding(stage, "InputError message of " + std::to_string(what.size()) + " chars: " + clipped(what));
+  if (e.line() < 0) return finding(stage, "InputError with line " + std::to_string(e.line()) + ": " + clipped(what));
+  if (e.key().empty()) return finding(stage, "InputError without a key: " + clipped(what));
+  TargetResult r;
+  r.outcome = Outcome::refused;
+  r.stage = stage;
+  r.key = e.key();
+  r.rule = e.rule();
+  r.line = e.line();
+  return r;
+}
+
+/// A straight line of the Delaunay input: a rectangle side or a piece of a fracture,
+/// split as mesh::build_delaunay_mesh splits it.
+struct Piece {
+  Vec2 a, b;
+  std::size_t feature;  ///< pieces of one feature share their end points
+};
+
+/// Whether `p` lies exactly on the line through the piece (CGAL's predicates are exact).
+bool exactly_collinear(const Vec2& p, const Piece& s) {
+  using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_2;
+  return CGAL::orientation(Point(s.a.x(), s.a.y()), Point(s.b.x(), s.b.y()), Point(p.x(), p.y())) == CGAL::COLLINEAR;
+}
+
+double distance_to_piece(const Vec2& p, const Piece& s) {
+  const Vec2 d = s.b - s.a;
+  const double t = d.squaredNorm() > 0 ? std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - (s.a + t * d)).norm();
+}
+
+std::vector<Piece> delaunay_pieces(const io::CaseConfig& c) {
+  std::vector<Piece> pieces;
+  std::size_t feature = 0;
+  auto rectangle = [&](const Rect& r) {
+    const Vec2 corners[] = {{r.xmin, r.ymin}, {r.xmax, r.ymin}, {r.xmax, r.ymax}, {r.xmin, r.ymax}};
+    for (int i = 0; i < 4; ++i) pieces.push_back({corners[i], corners[(i + 1) % 4], feature});
+    ++feature;
+  };
+  rectangle(c.domain.outer);
+  if (c.domain.inner) rectangle(*c.domain.inner);
+  const Vec2 lo(c.domain.outer.xmin, c.domain.outer.ymin), hi(c.domain.outer.xmax, c.domain.outer.ymax);
+  for (const auto& f : c.fractures) {
+    const double length = (f.to - f.from).norm();
+    const double n = f.segment_length_m > 0 ? std::max(1.0, std::ceil(length / f.segment_length_m - 1e-9)) : 1.0;
+    if (n > 1e5) return {};
+    Vec2 previous = f.from.cwiseMax(lo).cwiseMin(hi);
+    for (int k = 1; k <= static_cast<int>(n); ++k) {
+      const Vec2 p = k == static_cast<int>(n) ? f.to : Vec2(f.from + (f.to - f.from) * (k / n));
+      const Vec2 next = p.cwiseMax(lo).cwiseMin(hi);
+      pieces.push_back({previous, next, feature});
+      previous = next;
+    }
+    ++feature;
+  }
+  return pieces;
+}
+
+}  // namespace
+
+std::string known_problem(const io::CaseConfig& c) {
+  if (c.mesh.kind != io::MeshKind::delaunay) return {};
+  // CGAL's Delaunay refinement (Mesh_2) fails when a constraint point lies a rounding
+  // error away from another constraint: an assertion (n == zone.fh, Refine_edges.h)
+  // with CGAL's checks on, a segmentation fault in Release builds.
+  const std::vector<Piece> pieces = delaunay_pieces(c);
+  if (pieces.empty()) return "Delaunay constraints of more than 1e5 pieces (not checked)";
+  if (static_cast<double>(pieces.size()) * static_cast<double>(pieces.size()) > 4e6)
+    return "Delaunay constraints of more than 2000 pieces (not checked)";
+  // Points shared by two constraints (fractures meeting end to end) and points exactly on
+  // another constraint are fine; a point a rounding error off another constraint is not
+  // (its computed distance may even be 0).
+  const double tol = 1e-9 * std::hypot(c.domain.outer.width(), c.domain.outer.height());
+  for (const Piece& p : pieces)
+    for (const Vec2& end : {p.a, p.b})
+      for (const Piece& other : pieces) {
+        if (other.feature == p.feature || end == other.a || end == other.b) continue;
+        const double d = distance_to_piece(end, other);
+        if (d < tol && !exactly_collinear(end, other)) {
+          char text[200];
+          std::snprintf(text, sizeof text,
+                        "Delaunay constraint point (%.17g, %.17g) %.3g m off another constraint "
+                        "(CGAL Mesh_2 crashes)", end.x(), end.y(), d);
+          return text;
+        }
+      }
+  return {};
+}
+
+double estimated_block_count(const io::CaseConfig& c) {
+  const Rect& outer = c.domain.outer;
+  const Rect fine = c.domain.inner.value_or(outer);
+  if (c.mesh.kind == io::MeshKind::structured) {
+    const double h = c.mesh.cell_size_m, g = std::max(1.0, c.mesh.outer_growth);
+    const double nx = structured_cells_along(outer.xmin, outer.xmax, fine.xmin, fine.xmax, h, g);
+    const double ny = structured_cells_along(outer.ymin, outer.ymax, fine.ymin, fine.ymax, h, g);
+    const double per_cell = c.mesh.split == mesh::CellSplit::none ? 1 : c.mesh.split == mesh::CellSplit::two ? 2 : 4;
+    return nx * ny * per_cell;
+  }
+  // Delaunay: points from the area bounds and the constraint pieces, two triangles each.
+  const double fine_area = c.domain.inner ? fine.width() * fine.height() : 0.0;
+  double points = (outer.width() * outer.height() - fine_area) / c.mesh.max_area_outer_m2;
+  if (c.domain.inner) points += fine_area / c.mesh.max_area_inner_m2;
+  for (const auto& f : c.fractures)
+    points += f.segment_length_m > 0 ? std::ceil((f.to - f.from).norm() / f.segment_length_m) : 1.0;
+  return 2.0 * points;
+}
+
+std::string broken_invariant(const io::CaseConfig& c) {
+  const auto& t = c.time;
+  if (!(std::isfinite(t.dt_s) && t.dt_s > 0)) return "time.dt is not a positive number";
+  if (!c.load_ramp) {
+    if (!(std::isfinite(t.end_time_s) && t.end_time_s >= t.dt_s)) return "time.end_time is below dt or not finite";
+    if (t.end_time_s / t.dt_s > 1e7 + 0.5) return "more than 1e7 time steps";
+  }
+  if (!proper(c.domain.outer)) return "domain.outer is not a proper rectangle";
+  if (c.domain.inner && !(proper(*c.domain.inner) && c.domain.outer.contains(*c.domain.inner)))
+    return "domain.inner is not a proper rectangle inside domain.outer";
+  if (c.mesh.kind == io::MeshKind::structured) {
+    if (!(std::isfinite(c.mesh.cell_size_m) && c.mesh.cell_size_m > 0)) return "mesh.cell_size is not positive";
+  } else if (!(std::isfinite(c.mesh.max_area_inner_m2) && c.mesh.max_area_inner_m2 > 0 &&
+               std::isfinite(c.mesh.max_area_outer_m2) && c.mesh.max_area_outer_m2 > 0)) {
+    return "mesh area bounds are not positive";
+  }
+  for (const auto& m : c.materials)
+    if (!(std::isfinite(m.youngs_modulus_Pa) && m.youngs_modulus_Pa > 0 && std::isfinite(m.poissons_ratio) &&
+          m.poissons_ratio > -1 && m.poissons_ratio < 0.5 && std::isfinite(m.density_kg_m3) && m.density_kg_m3 > 0))
+      return "material '" + clipped(m.name) + "' has an impossible modulus, ratio or density";
+  for (const auto& f : c.fractures)
+    if (!finite(f.from) || !finite(f.to) || f.from == f.to)
+      return "fracture '" + clipped(f.name) + "' has no proper end points";
+  for (const auto& p : c.fixed_points)
+    if (!c.domain.outer.contains(p.at)) return "a fixed point lies outside the domain";
+  if (c.fixed_points.size() > 10000 || c.point_loads.size() > 10000 || c.probes.size() > 10000 ||
+      c.injections.size() > 10000 || c.materials.size() > 10000)
+    return "a list of more than 10000 items";
+  if (!finite(c.body_force_N_m3)) return "body_force is not finite";
+  return {};
+}
+
+TargetResult run_case_reader(std::string_view bytes, const TargetOptions& options) {
+  io::CaseConfig config;
+  try {
+    config = io::load_case_text(std::string(bytes), std::string(kInputLabel));
+  } catch (const InputError& e) {
+    return refusal(e, "read", options);
+  } catch (const std::exception& e) {
+    return finding("read", std::string("exception ") + typeid(e).name() + ": " + clipped(e.what()));
+  } catch (...) {
+    return finding("read", "exception of a type not derived from std::exception");
+  }
+  if (const std::string broken = broken_invariant(config); !broken.empty())
+    return finding("read", "accepted, but " + broken);
+
+  TargetResult accepted;
+  const double blocks = estimated_block_count(config);
+  if (!(blocks <= options.max_model_blocks)) return accepted;
+  accepted.known_problem = known_problem(config);
+  if (!accepted.known_problem.empty()) return accepted;
+  try {
+    const simulation::Model model = simulation::build_model(config);
+    accepted.model_built = model.system != nullptr;
+  } catch (const InputError& e) {
+    return refusal(e, "model", options);
+  } catch (const ModelError& e) {
+    const std::string what = e.what();
+    if (what.empty() || what.size() >= options.max_message_chars)
+      return finding("model", "ModelError with a message of " + std::to_string(what.size()) + " chars");
+    TargetResult r;
+    r.outcome = Outcome::refused;
+    r.stage = "model";
+    r.key = "(model)";
+    r.rule = what;
+    return r;
+  } catch (const std::exception& e) {
+    return finding("model", std::string("exception ") + typeid(e).name() + ": " + clipped(e.what()));
+  } catch (...) {
+    return finding("model", "exception of a type not derived from std::exception");
+  }
+  return accepted;
+}
+
+std::string describe(const TargetResult& r) {
+  switch (r.outcome) {
+    case Outcome::accepted:
+      if (!r.known_problem.empty()) return "accepted (model not built: known problem: " + r.known_problem + ")";
+      return r.model_built ? "accepted (model built)" : "accepted";
+    case Outcome::refused:
+      return "refused at " + r.stage + ": line " + std::to_string(r.line) + ", key '" + r.key + "': " + clipped(r.rule);
+    case Outcome::finding: break;
+  }
+  return "FINDING at " + r.stage + ": " + r.rule;
+}
+
+}  // namespace hfdda::fuzz
