@@ -191,29 +191,6 @@ TEST(FuzzGenerated, FixedPointListOfAMillionItems) {
   EXPECT_LT(s, 30.0) << "refusing the list took " << s << " s";
 }
 
-// --- Known problems (known_problem()) --------------------------------------------
-
-bool exited_with_failure(int status) { return !(WIFEXITED(status) && WEXITSTATUS(status) == 0); }
-
-TEST(KnownProblemDeathTest, DelaunayNearMissStillCrashesTheMeshBuilder) {
-  // Fails once the mesh builder refuses (or meshes) this input: then remove the check
-  // from known_problem() and this test, and make the regression file expect what the
-  // model builder says.
-  const io::CaseConfig config =
-      io::load_case_text(read_file(kFuzzDir / "regressions" / "delaunay_near_miss_crash.yaml"), "case.yaml");
-  ASSERT_NE(known_problem(config), "");
-  GTEST_FLAG_SET(death_test_style, "threadsafe");
-  EXPECT_EXIT(
-      {
-        try {
-          simulation::build_model(config);
-        } catch (const std::exception&) {
-        }
-        std::exit(0);
-      },
-      exited_with_failure, "");
-}
-
 // --- The pieces of the fuzzer ----------------------------------------------------
 
 TEST(FuzzTarget, BrokenInvariantsAreNamed) {

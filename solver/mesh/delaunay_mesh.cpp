@@ -176,6 +176,79 @@ void insert_feature(Cdt& cdt, const LineFeature& f, const Rect& outer) {
   }
 }
 
+/// The straight constraint pieces as they will be inserted: the rectangles' sides and
+/// each feature's pieces (end points pulled into the domain as insert_feature does).
+struct Piece {
+  Vec2 a, b;
+  int feature;  ///< -1: outer rectangle, -2: inner, else the index of the line feature
+};
+
+std::vector<Piece> constraint_pieces(const DelaunayMeshSpec& spec) {
+  std::vector<Piece> pieces;
+  auto rectangle = [&](const Rect& r, int id) {
+    const Vec2 c[] = {{r.xmin, r.ymin}, {r.xmax, r.ymin}, {r.xmax, r.ymax}, {r.xmin, r.ymax}};
+    for (int i = 0; i < 4; ++i) pieces.push_back({c[i], c[(i + 1) % 4], id});
+  };
+  rectangle(spec.outer, -1);
+  if (spec.has_inner) rectangle(spec.inner, -2);
+  const Vec2 lo(spec.outer.xmin, spec.outer.ymin), hi(spec.outer.xmax, spec.outer.ymax);
+  for (std::size_t i = 0; i < spec.constraints.size(); ++i) {
+    const LineFeature& f = spec.constraints[i];
+    const int n = piece_count(f);
+    Vec2 previous = f.from.cwiseMax(lo).cwiseMin(hi);
+    for (int k = 1; k <= n; ++k) {
+      const Vec2 p = k == n ? f.to : Vec2(f.from + (f.to - f.from) * (static_cast<double>(k) / n));
+      const Vec2 next = p.cwiseMax(lo).cwiseMin(hi);
+      pieces.push_back({previous, next, static_cast<int>(i)});
+      previous = next;
+    }
+  }
+  return pieces;
+}
+
+std::string feature_name(const DelaunayMeshSpec& spec, int feature) {
+  if (feature == -1) return "the outer rectangle";
+  if (feature == -2) return "the inner rectangle";
+  return "line feature '" + spec.constraints[feature].name + "'";
+}
+
+/// A constraint point a rounding error away from another constraint, without lying on
+/// it exactly, makes CGAL's refinement fail (an assertion in Mesh_2's edge refinement;
+/// a segmentation fault when CGAL's checks are compiled out), so such input is refused.
+/// Points exactly on another constraint (exact predicate) and shared end points are fine.
+void reject_near_misses(const DelaunayMeshSpec& spec) {
+  const std::vector<Piece> pieces = constraint_pieces(spec);
+  const double tol = 1e-9 * std::hypot(spec.outer.width(), spec.outer.height());
+  // Pieces bucketed on a uniform grid by their boxes grown by tol.
+  const int cells = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(pieces.size()))), 1, 1024);
+  const double cw = spec.outer.width() / cells, ch = spec.outer.height() / cells;
+  auto cell_x = [&](double x) { return std::clamp(static_cast<int>((x - spec.outer.xmin) / cw), 0, cells - 1); };
+  auto cell_y = [&](double y) { return std::clamp(static_cast<int>((y - spec.outer.ymin) / ch), 0, cells - 1); };
+  std::vector<std::vector<int>> bucket(static_cast<std::size_t>(cells) * cells);
+  for (int k = 0; k < static_cast<int>(pieces.size()); ++k) {
+    const Piece& s = pieces[k];
+    for (int ix = cell_x(std::min(s.a.x(), s.b.x()) - tol); ix <= cell_x(std::max(s.a.x(), s.b.x()) + tol); ++ix)
+      for (int iy = cell_y(std::min(s.a.y(), s.b.y()) - tol); iy <= cell_y(std::max(s.a.y(), s.b.y()) + tol); ++iy)
+        bucket[static_cast<std::size_t>(ix) * cells + iy].push_back(k);
+  }
+  for (const Piece& owner : pieces)
+    for (const Vec2& p : {owner.a, owner.b})
+      for (int k : bucket[static_cast<std::size_t>(cell_x(p.x())) * cells + cell_y(p.y())]) {
+        const Piece& s = pieces[k];
+        if (s.feature == owner.feature || p == s.a || p == s.b) continue;
+        const Vec2 d = s.b - s.a;
+        const double t = std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        const double distance = (p - (s.a + t * d)).norm();
+        if (distance >= tol) continue;
+        const bool on_line = CGAL::orientation(point_of(s.a), point_of(s.b), point_of(p)) == CGAL::COLLINEAR;
+        if (on_line && t > 0.0 && t < 1.0) continue;
+        throw ModelError("Delaunay mesh: " + feature_name(spec, owner.feature) + " has a point (" + num(p.x()) +
+                         ", " + num(p.y()) + ") " + num(distance) + " m from " + feature_name(spec, s.feature) +
+                         " without lying on it; make them meet exactly or keep them at least " + num(tol) +
+                         " m apart (1e-9 of the domain's diagonal)");
+      }
+}
+
 /// Expected number of mesh points, to stop a refinement that does not terminate.
 double expected_points(const DelaunayMeshSpec& spec) {
   const double inner_area = spec.has_inner ? spec.inner.width() * spec.inner.height() : 0.0;
@@ -228,6 +301,7 @@ Mesh extract_mesh(Cdt& cdt) {
 
 Mesh build_delaunay_mesh(const DelaunayMeshSpec& spec) {
   validate(spec);
+  reject_near_misses(spec);
   Cdt cdt;
   insert_rectangle(cdt, spec.outer);
   if (spec.has_inner) insert_rectangle(cdt, spec.inner);

@@ -253,6 +253,31 @@ TEST(MeshDelaunay, CrossingFeaturesAndUniformDomain) {
               1e-9);
 }
 
+TEST(MeshDelaunay, RefusesAPointARoundingErrorOffAnotherFeature) {
+  // Found by the case-file fuzzer: CGAL's refinement crashed on such input.
+  DelaunayMeshSpec s;
+  s.outer = {-8.0, 8.0, -8.0, 8.0};
+  s.max_area_outer_m2 = 2.0;
+  s.constraints.push_back({"crack", Vec2(-1.5, 1e-16), Vec2(1.5, 0), 0.5});
+  s.constraints.push_back({"natural", Vec2(0, -1.5), Vec2(2, 1.5), 0.75});
+  try {
+    build_delaunay_mesh(s);
+    ADD_FAILURE() << "near miss accepted";
+  } catch (const ModelError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("line feature 'crack'"), std::string::npos) << what;
+    EXPECT_NE(what.find("line feature 'natural'"), std::string::npos) << what;
+    EXPECT_NE(what.find("without lying on it"), std::string::npos) << what;
+  }
+  // A point exactly on the other feature, a shared end point and a clear gap all mesh.
+  s.constraints = {{"crack", Vec2(-1.5, 0), Vec2(1.5, 0), 0.5}, {"natural", Vec2(0, -1.5), Vec2(2, 1.5), 0.75}};
+  EXPECT_NO_THROW(build_delaunay_mesh(s));
+  s.constraints = {{"a", Vec2(-2, 0), Vec2(0, 0), 0.5}, {"b", Vec2(0, 0), Vec2(1, 2), 0.5}};
+  EXPECT_NO_THROW(build_delaunay_mesh(s));
+  s.constraints = {{"a", Vec2(-2, 0), Vec2(0, 0), 0.5}, {"b", Vec2(0, 1e-3), Vec2(0, 2), 0.5}};
+  EXPECT_NO_THROW(build_delaunay_mesh(s));
+}
+
 TEST(MeshDelaunay, RejectsBadSpecs) {
   DelaunayMeshSpec s = delaunay_spec();
   s.constraints.push_back({"outside", Vec2(0, 0), Vec2(50, 0), 1.0});
