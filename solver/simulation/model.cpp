@@ -198,7 +198,8 @@ mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
       mesh::DelaunayMeshSpec spec;
       set_domain(spec, c);
       spec.max_area_inner_m2 = c.mesh.max_area_inner_m2;
-      spec.max_area_outer_m2 = c.mesh.max_area_outer_m2;
+      // Without an inner rectangle, max_area_inner bounds the whole domain (docs/case_file.md).
+      spec.max_area_outer_m2 = c.domain.inner ? c.mesh.max_area_outer_m2 : c.mesh.max_area_inner_m2;
       spec.min_angle_deg = c.mesh.min_angle_deg;
       for (const auto& f : c.fractures) spec.constraints.push_back({f.name, f.from, f.to, f.segment_length_m});
       m = mesh::build_delaunay_mesh(spec);

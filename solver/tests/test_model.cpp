@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "io/case_config.hpp"
 #include "simulation/model.hpp"
 
@@ -38,6 +40,28 @@ time: {dt: 1.0, end_time: 1.0}
   // Four cells of four triangles: 4 x 4 internal joints + 4 shared cell edges.
   EXPECT_EQ(inner, 20);
   EXPECT_EQ(breakable, 21);
+}
+
+}  // namespace
+}  // namespace hfdda
+
+namespace hfdda {
+namespace {
+
+TEST(ModelSetup, DelaunayWithoutInnerRectangleUsesMaxAreaInnerEverywhere) {
+  // docs/case_file.md: max_area_inner applies everywhere without an inner rectangle (the
+  // mesher used max_area_outer; found by the fuzzer: 16 blocks instead of > 1000).
+  const std::string text =
+      "domain: {outer: {xmin: 0, xmax: 10, ymin: 0, ymax: 10}}\n"
+      "mesh: {type: delaunay, max_area_inner: 0.1, max_area_outer: 50}\n"
+      "fixed_points: [[0, 0], [10, 0]]\n";
+  const mesh::Mesh m = simulation::build_case_mesh(io::load_case_text(text, "no_inner.yaml"));
+  EXPECT_GE(m.blocks.size(), 1000u);
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    const auto& p = m.blocks[b].points;
+    const Vec2 u = m.points[p[1]] - m.points[p[0]], v = m.points[p[2]] - m.points[p[0]];
+    ASSERT_LE(0.5 * std::abs(u.x() * v.y() - u.y() * v.x()), 0.1 * (1 + 1e-12)) << "block " << b;
+  }
 }
 
 }  // namespace
