@@ -69,7 +69,9 @@ marked *required*. A complete example is
   after `---`, content after a `...` document end, YAML tags (`!!str 1.0`), anchors
   and aliases (`&a`, `*a`), maps and lists nested more than 16 levels deep (checked
   before the YAML is parsed), keys of more than 64 characters, bytes that are not UTF-8 in any string, a list of more than
-  100000 items (10000 for the lists of the tables below). LF, CR LF and CR line endings
+  100000 items (10000 for the lists of the tables below), more than 400000 values in the
+  whole file (lines, list items and maps, counted before parsing, so that a huge list
+  costs no memory). LF, CR LF and CR line endings
   are all read. Values and file names quoted in messages are cut to 80 characters.
 - The `allowed` ranges bound physical values to what is plausible for rock, fluid and
   loading, with a wide margin: moduli <= 1e13 Pa (diamond is about 1.2e12 Pa),

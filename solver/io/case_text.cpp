@@ -97,6 +97,7 @@ class TextScanner {
            "'...' ends the YAML document here, but more follows on line " + std::to_string(line_no) +
                " and would be ignored; remove the '...'");
     content_seen_ = true;
+    count_value(line_no);  // a line holds at least one value
     if (flow_depth_ == 0) {
       while (!indents_.empty() && indents_.back() > indent) indents_.pop_back();
       if (indents_.empty() || indents_.back() < indent) indents_.push_back(indent);
@@ -132,10 +133,14 @@ class TextScanner {
         fail(line_no, "(syntax)",
              std::string("YAML anchors and aliases ('") + c + "') are not allowed: write each value out");
       if (c == '-' && previous == 0 && (i + 1 == line.size() || is_blank(line[i + 1]))) ++block_depth;
-      if ((c == '[' || c == '{') && token_start)
+      if ((c == '[' || c == '{') && token_start) {
         ++flow_depth_;
-      else if ((c == ']' || c == '}') && flow_depth_ > 0)
+        count_value(line_no);
+      } else if ((c == ']' || c == '}') && flow_depth_ > 0) {
         --flow_depth_;
+      } else if (c == ',' && flow_depth_ > 0) {
+        count_value(line_no);
+      }
       if (block_depth + flow_depth_ > kMaxNesting)
         fail(line_no, "(document)",
              "nesting too deep: more than " + std::to_string(kMaxNesting) +
@@ -143,6 +148,18 @@ class TextScanner {
       if (c == '-' && previous == 0 && (i + 1 == line.size() || is_blank(line[i + 1]))) continue;
       previous = c;
     }
+  }
+
+  /// Counts one more value (a line, a flow collection or an item after a comma) and
+  /// refuses the file before parsing once there are too many: yaml-cpp spends a few
+  /// hundred bytes per node, so a 4 MiB list of a million items cost half a gigabyte.
+  void count_value(int line_no) {
+    if (++values_ <= kMaxCaseFileValues) return;
+    fail(line_no, "(file)",
+         "holds more than " + std::to_string(kMaxCaseFileValues) +
+             " YAML values (lines, list items, maps) by this line; a case file may hold at most " +
+             std::to_string(kMaxCaseFileValues) + " and one list at most " + std::to_string(kMaxListItems) +
+             " items");
   }
 
   /// Index of the quote closing the one at `open`, on the same line.
@@ -171,6 +188,7 @@ class TextScanner {
   bool content_seen_ = false;
   int document_end_ = 0;
   std::size_t content_end_ = 0;
+  std::size_t values_ = 0;
 };
 
 class TreeChecker {

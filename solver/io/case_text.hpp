@@ -16,6 +16,7 @@ inline constexpr std::size_t kMaxCaseFileBytes = 4u << 20;  ///< 4 MiB
 inline constexpr int kMaxNesting = 16;                       ///< maps and lists inside each other
 inline constexpr std::size_t kMaxKeyLength = 64;             ///< characters of one key
 inline constexpr std::size_t kMaxListItems = 100000;         ///< items of any one YAML list
+inline constexpr std::size_t kMaxCaseFileValues = 400000;    ///< values of the whole file, counted before parsing
 
 /// The text with CR LF and lone CR line endings turned into LF, after checking its size,
 /// nesting, quotes and document markers. Throws InputError naming `file` and the line.
