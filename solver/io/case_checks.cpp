@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "io/breakable_patterns.hpp"
 #include "io/load_ramp_keys.hpp"
@@ -65,6 +66,15 @@ void check_end_time(const CaseConfig& c, const MergedChecker& m) {
 }
 
 /// At most kMaxSteps steps, and a whole number of them: the run ends at end_time.
+/// A step count for a message: exact when it can be, else to 3 digits (1e-300 s steps
+/// of 10 s are "about 1e+301", not 9.999999999999999e300).
+std::string step_count_text(double steps) {
+  if (steps < 1e15 && steps == std::round(steps)) return format_number(steps);
+  char text[32];
+  std::snprintf(text, sizeof text, "about %.3g", steps);
+  return text;
+}
+
 void check_step_count(const CaseConfig& c, const MergedChecker& m) {
   if (c.load_ramp) return;  // levels, not end_time, set the steps (checked with load_ramp)
   const double steps = c.time.end_time_s / c.time.dt_s;
@@ -72,7 +82,7 @@ void check_step_count(const CaseConfig& c, const MergedChecker& m) {
   const std::string values =
       "end_time " + format_number(c.time.end_time_s) + " s, dt " + format_number(c.time.dt_s) + " s";
   if (steps > kMaxSteps)
-    m.fail(key, "gives " + format_number(steps) + " time steps (" + values + "); at most " +
+    m.fail(key, "gives " + step_count_text(steps) + " time steps (" + values + "); at most " +
                     format_number(kMaxSteps) + " are allowed: raise dt or lower end_time");
   const double whole = std::round(steps);
   if (std::abs(steps - whole) > 1e-9 * std::max(1.0, steps)) {
