@@ -18,7 +18,7 @@
 
 namespace hfdda::simulation {
 
-constexpr std::uint32_t kCheckpointVersion = 1;
+constexpr std::uint32_t kCheckpointVersion = 2;  // 2: load ramp keeps the contact states of its last level
 
 /// Where the run stands after a committed step, besides the model's state.
 struct RunProgress {

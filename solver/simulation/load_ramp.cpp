@@ -96,10 +96,24 @@ std::vector<double> LoadRamp::margins(const dda::BlockSystem& system) const {
   return m;
 }
 
+std::vector<std::uint8_t> LoadRamp::contact_states(const dda::BlockSystem& system) {
+  const auto& contacts = system.contacts();
+  std::vector<std::uint8_t> states(contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i)
+    states[i] = static_cast<std::uint8_t>(static_cast<int>(contacts[i].state) | (contacts[i].bonded ? 8 : 0) |
+                                          (contacts[i].vertex_vertex_active ? 16 : 0));
+  return states;
+}
+
 void LoadRamp::try_jump(const dda::BlockSystem& system) {
   std::vector<double> now = margins(system);
-  if (!have_margins_ || current_level_ == margins_level_) {
+  std::vector<std::uint8_t> states = contact_states(system);
+  // Two levels predict the next failure only if no contact changed state between them:
+  // a contact that opened or started to slide (crack faces in shear) makes the response
+  // non-linear and path-dependent, and a jump over it can land past the failure.
+  if (!have_margins_ || current_level_ == margins_level_ || states != states_at_margins_) {
     bond_margins_ = std::move(now);
+    states_at_margins_ = std::move(states);
     margins_level_ = current_level_;
     have_margins_ = true;
     return;
@@ -108,6 +122,7 @@ void LoadRamp::try_jump(const dda::BlockSystem& system) {
   for (std::size_t i = 0; i < now.size(); ++i)
     predicted = std::min(predicted, fracture::level_at_zero_margin(margins_level_, bond_margins_[i], current_level_, now[i]));
   bond_margins_ = std::move(now);  // the next prediction may start from this level
+  states_at_margins_ = std::move(states);
   margins_level_ = current_level_;
   if (!std::isfinite(predicted)) return;
   if (std::isnan(outcome_.first_failure_Pa) && std::isnan(outcome_.predicted_first_failure_Pa))
@@ -193,6 +208,7 @@ void LoadRamp::save_state(BinaryWriter& out) const {
   out.put_vector(bond_margins_);
   out.put(margins_level_);
   out.put(have_margins_);
+  out.put_vector(states_at_margins_);
   out.put(outcome_);
 }
 
@@ -209,6 +225,7 @@ void LoadRamp::restore_state(BinaryReader& in) {
   in.get_vector(bond_margins_);
   in.get(margins_level_);
   in.get(have_margins_);
+  in.get_vector(states_at_margins_);
   in.get(outcome_);
 }
 

@@ -13,6 +13,7 @@
 
 #include <limits>
 #include <string>
+#include <cstdint>
 #include <vector>
 
 #include "dda/block_system.hpp"
@@ -69,6 +70,8 @@ class LoadRamp {
 
  private:
   std::vector<double> margins(const dda::BlockSystem& system) const;
+  /// State of every contact (open, locked, sliding; bonded; vertex-vertex active).
+  static std::vector<std::uint8_t> contact_states(const dda::BlockSystem& system);
   void try_jump(const dda::BlockSystem& system);
   bool stop_condition_met(const dda::BlockSystem& system);
 
@@ -84,6 +87,9 @@ class LoadRamp {
   std::vector<double> bond_margins_;     // their margins at the last level (no failure yet)
   double margins_level_ = 0.0;
   bool have_margins_ = false;
+  // The contact states at that level: a prediction needs the same states at both levels
+  // (the response is linear only while no contact opens, closes or starts to slide).
+  std::vector<std::uint8_t> states_at_margins_;
   std::vector<int> stop_contacts_;       // contacts of the stop joints
   double stop_length_m_ = 0.0;
   std::vector<int> intact_joints_;       // breakable joints not initially open
