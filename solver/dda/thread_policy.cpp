@@ -3,10 +3,15 @@
 #include <dlfcn.h>
 #include <omp.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <stdexcept>
 
 namespace hfdda::dda {
+
+namespace {
+std::atomic<int> g_applied_threads{0};
+}  // namespace
 
 int threads_from_environment() {
   const char* text = std::getenv("HFDDA_THREADS");
@@ -32,7 +37,10 @@ std::string apply_thread_policy(int threads) {
     set(threads);
     blas = "OpenBLAS " + std::to_string(threads);
   }
+  g_applied_threads = threads;
   return "threads: " + std::to_string(threads) + " (CHOLMOD OpenMP " + std::to_string(threads) + ", " + blas + ")";
 }
+
+int applied_threads() { return g_applied_threads; }
 
 }  // namespace hfdda::dda
