@@ -51,6 +51,7 @@ output: {every_steps: 0, vtu: false}
 
 void run_case(benchmark::State& state, const io::CaseConfig& config, double target_s) {
   const int steps = static_cast<int>(std::llround(config.time.end_time_s / config.time.dt_s));
+  const bench::AdjacentCalibration calibration(state);
   StepStatistics total;
   int blocks = 0;
   for (auto _ : state) {
@@ -92,6 +93,7 @@ constexpr int kKgdWarmUpSteps = 1, kKgdTimedSteps = 3;
 
 // range(0): dx in cm (200, 100, 50); range(1): threads.
 void BM_CoupledKgdStep(benchmark::State& state) {
+  const bench::AdjacentCalibration calibration(state);
   const bench::ScopedThreads threads(static_cast<int>(state.range(1)));
   const std::string file = state.range(0) == 50 ? "base" : "dx" + std::to_string(state.range(0) / 100);
   const io::CaseConfig config = io::load_case_file(std::string(HFDDA_SOURCE_DIR) + "/verification/kgd/" + file + ".yaml");

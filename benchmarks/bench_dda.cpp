@@ -82,6 +82,7 @@ void add_counters(benchmark::State& state, const dda::BlockSystem& system, const
 
 // A first step from rest (loads applied, contacts settling): the realistic cost.
 void BM_DdaFirstStep(benchmark::State& state) {
+  const bench::AdjacentCalibration calibration(state);
   const int n = static_cast<int>(state.range(0));
   StepStatistics last;
   std::unique_ptr<DdaCase> system;
@@ -99,6 +100,7 @@ void BM_DdaFirstStep(benchmark::State& state) {
 // range(1) threads. The steps before it run untimed until the state is equilibrated, so
 // that every thread count and repetition times the same kind of step.
 void BM_DdaSteadyStep(benchmark::State& state) {
+  const bench::AdjacentCalibration calibration(state);  // before the threads: measured at the process's setting
   const bench::ScopedThreads threads(static_cast<int>(state.range(1)));
   auto system = make_system(static_cast<int>(state.range(0)));
   StepStatistics last = system->step(1.0);
@@ -116,6 +118,7 @@ void BM_DdaSteadyStep(benchmark::State& state) {
 
 // One numeric CHOLMOD factorisation of K (symbolic analysis reused): the floor.
 void BM_FactorizeK(benchmark::State& state) {
+  const bench::AdjacentCalibration calibration(state);
   const bench::ScopedThreads threads(static_cast<int>(state.range(1)));
   auto system = make_system(static_cast<int>(state.range(0)));
   system->step(1.0);

@@ -6,11 +6,13 @@
 #include <benchmark/benchmark.h>
 
 #include <sys/resource.h>
+#include <time.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -61,32 +63,81 @@ class ScopedThreads {
 
 /// Fixed work that touches none of HFDDA's code: a sparse Cholesky factorisation and
 /// solve of the 5-point Laplacian on a 96 x 96 grid (Eigen, one thread). Its time
-/// measures the machine's speed at the moment; scripts/bench divides every benchmark's
-/// time by it to compare runs made while the shared machine was faster or slower.
-inline void BM_Calibration(benchmark::State& state) {
-  const int n = 96, unknowns = n * n;
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const int k = i * n + j;
-      entries.emplace_back(k, k, 4.0);
-      if (i > 0) entries.emplace_back(k, k - n, -1.0);
-      if (j > 0) entries.emplace_back(k, k - 1, -1.0);
-      if (i + 1 < n) entries.emplace_back(k, k + n, -1.0);
-      if (j + 1 < n) entries.emplace_back(k, k + 1, -1.0);
-    }
-  Eigen::SparseMatrix<double> a(unknowns, unknowns);
-  a.setFromTriplets(entries.begin(), entries.end());
-  const Eigen::VectorXd b = Eigen::VectorXd::Ones(unknowns);
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
-  llt.analyzePattern(a);
-  for (auto _ : state) {
-    llt.factorize(a);
-    Eigen::VectorXd x = llt.solve(b);
+/// measures the machine's speed at the moment, so that scripts/bench can compare runs
+/// made while the shared machine was faster or slower. BM_Calibration times it once per
+/// binary (the machine's speed in the report); AdjacentCalibration next to every
+/// repetition of a benchmark (what the comparison divides by).
+class CalibrationWork {
+ public:
+  CalibrationWork() : a_(kN * kN, kN * kN), b_(Eigen::VectorXd::Ones(kN * kN)) {
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j) {
+        const int k = i * kN + j;
+        entries.emplace_back(k, k, 4.0);
+        if (i > 0) entries.emplace_back(k, k - kN, -1.0);
+        if (j > 0) entries.emplace_back(k, k - 1, -1.0);
+        if (i + 1 < kN) entries.emplace_back(k, k + kN, -1.0);
+        if (j + 1 < kN) entries.emplace_back(k, k + 1, -1.0);
+      }
+    a_.setFromTriplets(entries.begin(), entries.end());
+    llt_.analyzePattern(a_);
+  }
+  void run() {
+    llt_.factorize(a_);
+    Eigen::VectorXd x = llt_.solve(b_);
     benchmark::DoNotOptimize(x.data());
   }
+
+ private:
+  static constexpr int kN = 96;
+  Eigen::SparseMatrix<double> a_;
+  Eigen::VectorXd b_;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt_;
+};
+
+inline void BM_Calibration(benchmark::State& state) {
+  CalibrationWork work;
+  for (auto _ : state) work.run();
 }
 BENCHMARK(BM_Calibration)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The calibration work timed next to a benchmark's own repetition, before and after its
+/// timed loop: counters calibration_real_ms and calibration_cpu_ms (per run of the work,
+/// the mean of both ends). A busy spell of the shared machine that lasts longer than a
+/// repetition slows both, and their ratio does not move. The CPU time is the calling
+/// thread's: threads of the benchmark still spinning would count in the process's.
+class AdjacentCalibration {
+ public:
+  explicit AdjacentCalibration(benchmark::State& state) : state_(state) { measure(); }
+  ~AdjacentCalibration() {
+    measure();
+    state_.counters["calibration_real_ms"] = 1e3 * real_s_ / runs_;
+    state_.counters["calibration_cpu_ms"] = 1e3 * cpu_s_ / runs_;
+  }
+  AdjacentCalibration(const AdjacentCalibration&) = delete;
+  AdjacentCalibration& operator=(const AdjacentCalibration&) = delete;
+
+ private:
+  void measure() {
+    static CalibrationWork work;
+    constexpr int kRuns = 10;  // about 50 ms
+    const double cpu0 = thread_cpu_s();
+    const auto wall0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < kRuns; ++i) work.run();
+    real_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    cpu_s_ += thread_cpu_s() - cpu0;
+    runs_ += kRuns;
+  }
+  static double thread_cpu_s() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+  }
+  benchmark::State& state_;
+  double real_s_ = 0.0, cpu_s_ = 0.0;
+  int runs_ = 0;
+};
 
 /// The CPU's model name (/proc/cpuinfo), to tell whether a baseline came from this host.
 inline std::string cpu_model() {

@@ -8,21 +8,27 @@ Usage:
         --save benchmarks/baseline.json
 
 A run is a directory of Google Benchmark JSON files, one per binary. Per benchmark it
-keeps the median over repetitions and a robust relative noise (1.4826 x the median
-absolute deviation, over the median), of the real (wall) and the CPU time. The verdict
-is on the CPU time of the process (all threads) unless --metric real: on a shared
-machine a busy neighbour stretches wall time but hardly CPU time (measured at a load of
-5 on 2 cores: 6-22 % spread in wall time against 1-4 % in CPU time, one thread).
+keeps, for the CPU time of the process (all threads) and the wall (real) time, the
+median over repetitions and a robust relative noise: 1.4826 x the median absolute
+deviation, over the median.
 
-Every binary also runs BM_Calibration, fixed work that touches none of HFDDA's code.
-Dividing a benchmark's time by the calibration's time of the same binary and run gives
-a normalised time that does not move when the shared machine as a whole is faster or
-slower. The verdict is on the ratio of normalised times, now / baseline: "slower" when
-it exceeds 1 + max(K x noise, FLOOR), where noise combines (in quadrature) the
-benchmark's and the calibration's relative noise, each the larger of the baseline's and
-this run's. Absolute ratios are shown beside it; when the host (CPU model and count)
-differs from the baseline's, only the normalised ratio means anything, and a warning
-says so.
+Normalised times: each benchmark also times a fixed piece of work that touches none of
+HFDDA's code next to every repetition (counters calibration_cpu_ms and
+calibration_real_ms, benchmarks/bench_support.hpp). A busy spell of the shared machine
+that lasts longer than a repetition slows both, so the per-repetition ratio of the two
+holds still where either time moves. Its median and noise are the normalised time and
+its noise. (Dividing by BM_Calibration, timed once per binary, was tried first: its
+own moment of the run is as noisy as any other, and between two runs the median ratio
+strayed 15 % (CPU) and 30 % (wall) from 1, against 3.5 % with the adjacent work.)
+
+The verdict is on the ratio now / baseline of normalised CPU times (--metric real for
+wall times): "slower" above the limit 1 + max(K x noise, FLOOR), "faster" below its
+inverse, where noise is the larger of the baseline's and this run's. CPU time, because
+a busy neighbour stretches wall time more: two runs of bench_dda at a load of 2.5-3.5
+on 2 cores had median limits of 1.15 in CPU time and 1.37 in wall time, and the same
+3.5 % median departure from 1. Without the calibration counters, the same host
+compares absolute times; another host (CPU model or count differs) compares times
+divided by BM_Calibration's median, with a warning, and nothing without it.
 
 Exit status: 0 when nothing is slower; 1 when a benchmark is flagged slower or failed;
 2 when the inputs cannot be read. Without a baseline file it warns and exits 0.
@@ -78,6 +84,12 @@ def summarise(entries: list[dict]) -> dict:
         for m in METRICS:
             values = [float(e[f"{m}_time"]) * TO_MS[e.get("time_unit", "ns")] for e in reps]
             out[m] = {"median_ms": statistics.median(values), "noise": robust_noise(values)}
+            # The calibration timed next to each repetition (counter calibration_<metric>_ms).
+            adjacent = [e.get(f"calibration_{m}_ms") for e in reps]
+            if all(isinstance(c, (int, float)) and c > 0 for c in adjacent):
+                ratios = [v / c for v, c in zip(values, adjacent)]
+                out[m]["adjacent"] = statistics.median(ratios)
+                out[m]["adjacent_noise"] = robust_noise(ratios)
         return out
     # --benchmark_report_aggregates_only: the median aggregate, noise from the cv one.
     agg = {e.get("aggregate_name"): e for e in entries}
@@ -122,7 +134,7 @@ def load_run(results: Path) -> dict:
             if key != calibration:
                 b["calibration"] = calibration
             run["benchmarks"][key] = b
-        # Normalised times: over the calibration of the same binary and run.
+        # Normalised times: over the BM_Calibration of the same binary and run.
         cal = run["benchmarks"].get(calibration)
         for key, b in run["benchmarks"].items():
             if b.get("calibration") == calibration and cal and "error" not in cal and "error" not in b:
@@ -157,6 +169,29 @@ def save_baseline(run: dict, out: Path, note: str = "") -> None:
     out.write_text(json.dumps(baseline, indent=1) + "\n", encoding="utf-8")
 
 
+def noise_of(entry: dict, metric: str, unknown_noise: float) -> float:
+    v = entry.get(metric, {}).get("noise")
+    return unknown_noise if v is None else v
+
+
+def ratio_and_noise(b: dict, n: dict, base: dict, now: dict, metric: str, host_ok: bool,
+                    unknown_noise: float) -> tuple[float | None, float | None, str]:
+    """now / baseline of one benchmark, its relative noise, and what the ratio is of."""
+    bm, nm = b.get(metric, {}), n.get(metric, {})
+    if bm.get("adjacent") and nm.get("adjacent"):
+        noises = [unknown_noise if x is None else x for x in (bm.get("adjacent_noise"), nm.get("adjacent_noise"))]
+        return nm["adjacent"] / bm["adjacent"], max(noises), "normalised"
+    if host_ok:
+        noise = max(noise_of(b, metric, unknown_noise), noise_of(n, metric, unknown_noise))
+        return nm["median_ms"] / bm["median_ms"], noise, "absolute"
+    if bm.get("normalised") and nm.get("normalised"):  # by the binary's BM_Calibration, a poorer match
+        cal_b, cal_n = base.get(b["calibration"], {}), now.get(n["calibration"], {})
+        noise = math.hypot(max(noise_of(b, metric, unknown_noise), noise_of(n, metric, unknown_noise)),
+                           max(noise_of(cal_b, metric, unknown_noise), noise_of(cal_n, metric, unknown_noise)))
+        return nm["normalised"] / bm["normalised"], noise, "normalised by run"
+    return None, None, ""
+
+
 def compare(baseline: dict, run: dict, metric: str = "cpu", k: float = 3.0, floor: float = 0.05,
             unknown_noise: float = 0.05) -> tuple[list[dict], list[str]]:
     """One row per benchmark of either side, and the warnings."""
@@ -166,55 +201,39 @@ def compare(baseline: dict, run: dict, metric: str = "cpu", k: float = 3.0, floo
         warnings.append(f"host differs from the baseline's ({describe_host(baseline.get('host'))} then, "
                         f"{describe_host(run.get('host'))} now): only normalised times are compared")
     base, now = baseline.get("benchmarks", {}), run.get("benchmarks", {})
+    other = METRICS[1 - METRICS.index(metric)]
     rows = []
     for key in list(base) + [k_ for k_ in now if k_ not in base]:
         b, n = base.get(key), now.get(key)
         row = {"benchmark": key, "baseline_ms": None, "now_ms": None, "ratio": None, "normalised_ratio": None,
-               "other_ratio": None, "noise": None, "limit": None}
+               "other_ratio": None, "noise": None, "limit": None, "basis": ""}
         rows.append(row)
-        if b is None:
-            row["verdict"] = "new"
-            row["now_ms"] = n.get(metric, {}).get("median_ms")
-            continue
-        row["baseline_ms"] = b.get(metric, {}).get("median_ms")
+        if b is not None and "error" not in b:
+            row["baseline_ms"] = b[metric]["median_ms"]
+        if n is not None and "error" not in n:
+            row["now_ms"] = n[metric]["median_ms"]
         if n is None:
             row["verdict"] = "not run"
-            continue
-        if "error" in n:
+        elif "error" in n:
             row["verdict"] = f"error: {n['error']}"
-            continue
-        if "error" in b:
-            row["now_ms"] = n[metric]["median_ms"]
+        elif b is None or "error" in b:
             row["verdict"] = "new"
-            continue
-        row["now_ms"] = n[metric]["median_ms"]
-        row["ratio"] = row["now_ms"] / row["baseline_ms"]
-        if "calibration" not in n:
+        elif "calibration" not in n:
+            row["ratio"] = row["now_ms"] / row["baseline_ms"]
             row["verdict"] = "reference"  # the machine's speed, now over then
-            continue
-
-        def noise_of(entry):
-            v = entry.get(metric, {}).get("noise")
-            return unknown_noise if v is None else v
-
-        noise = max(noise_of(b), noise_of(n))
-        bn, nn = b[metric].get("normalised"), n[metric].get("normalised")
-        other = METRICS[1 - METRICS.index(metric)]
-        if b.get(other, {}).get("normalised") and n.get(other, {}).get("normalised"):
-            row["other_ratio"] = n[other]["normalised"] / b[other]["normalised"]
-        if bn is not None and nn is not None:
-            row["normalised_ratio"] = nn / bn
-            cal_b, cal_n = base.get(b["calibration"], {}), now.get(n["calibration"], {})
-            noise = math.hypot(noise, max(noise_of(cal_b), noise_of(cal_n)))
-            ratio = row["normalised_ratio"]
-        elif host_ok:
-            ratio = row["ratio"]
         else:
-            row["verdict"] = "not compared (no calibration)"
-            continue
-        row["noise"] = noise
-        row["limit"] = 1.0 + max(k * noise, floor)
-        row["verdict"] = ("slower" if ratio > row["limit"] else "faster" if ratio < 1.0 / row["limit"] else "ok")
+            row["ratio"] = row["now_ms"] / row["baseline_ms"]
+            ratio, noise, row["basis"] = ratio_and_noise(b, n, base, now, metric, host_ok, unknown_noise)
+            if row["basis"].startswith("normalised"):
+                row["normalised_ratio"] = ratio
+            other_ratio, _, other_basis = ratio_and_noise(b, n, base, now, other, host_ok, unknown_noise)
+            row["other_ratio"] = other_ratio if other_basis.startswith("normalised") else None
+            if ratio is None:
+                row["verdict"] = "not compared (no calibration)"
+                continue
+            row["noise"] = noise
+            row["limit"] = 1.0 + max(k * noise, floor)
+            row["verdict"] = ("slower" if ratio > row["limit"] else "faster" if ratio < 1.0 / row["limit"] else "ok")
     return rows, warnings
 
 
@@ -261,12 +280,14 @@ def markdown(rows: list[dict], warnings: list[str], baseline: dict, metric: str,
              f"{baseline.get('created', '?')}, {describe_host(baseline.get('host'))}; load average at the "
              "start of each binary: " + "; ".join(f"{b} {', '.join(fmt(x, 3) for x in v or [])}"
                                                  for b, v in load.items()),
-             f"- {'CPU time of the process (all threads)' if metric == 'cpu' else 'wall (real) time'} "
-             "(`--metric` of compare_baseline.py), median over repetitions; ratio = now / baseline; normalised ratio = the same "
-             f"after dividing each time by `{CALIBRATION}` of its binary and run (the verdict's basis)",
-             f"- slower when the normalised ratio exceeds the limit 1 + max({k:g} x noise, {100 * floor:g} %); "
-             "noise = relative spread (1.4826 MAD / median) of the benchmark and of the calibration, the larger "
-             "of baseline and now, combined in quadrature"]
+             f"- {'CPU time of the process (all threads)' if metric == 'cpu' else 'wall (real) time'}, median "
+             "over repetitions; ratio = now / baseline; normalised ratio = the same for the time divided, "
+             "repetition by repetition, by the calibration work timed next to it (the verdict's basis; "
+             "`benchmarks/compare_baseline.py`)",
+             f"- slower when the normalised ratio exceeds the limit 1 + max({k:g} x noise, {100 * floor:g} %), "
+             "faster below its inverse; noise = relative spread (1.4826 MAD / median) of the normalised time "
+             "over repetitions, the larger of baseline and now; `BM_Calibration` rows (reference) show the "
+             "machine's speed, now / then"]
     lines += [f"- ⚠ {w}" for w in warnings]
     header, body = table(rows, metric)
     lines += ["", "| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]

@@ -27,13 +27,25 @@ STEP = "bench_small:BM_Step/cells:16/threads:1"
 NOISY = "bench_small:BM_Noisy"
 
 
-def scaled(run: dict, factor: float, prefix: str = "") -> dict:
-    """The run with the times of the benchmarks whose name starts with prefix times factor."""
+def scaled(run: dict, factor: float, prefix: str = "", calibration: bool = False) -> dict:
+    """The run with the times of the benchmarks whose name starts with prefix times factor,
+    and with calibration, the calibration timed next to them too (a slower machine)."""
     out = copy.deepcopy(run)
     for b in out["benchmarks"]:
         if b["run_name"].startswith(prefix):
             b["real_time"] *= factor
             b["cpu_time"] *= factor
+            if calibration and "calibration_real_ms" in b:
+                b["calibration_real_ms"] *= factor
+                b["calibration_cpu_ms"] *= factor
+    return out
+
+
+def without_adjacent_calibration(run: dict) -> dict:
+    out = copy.deepcopy(run)
+    for b in out["benchmarks"]:
+        b.pop("calibration_real_ms", None)
+        b.pop("calibration_cpu_ms", None)
     return out
 
 
@@ -68,7 +80,7 @@ class CompareBaselineTest(unittest.TestCase):
                             str(self.results(scaled(RUN, 1.3, "BM_Noisy"))), "--baseline", str(DATA / "baseline.json")],
                            capture_output=True, text=True, timeout=60)
         self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
-        self.assertRegex(p.stdout, r"bench_small:BM_Noisy +20\.1 +26 +1\.29 +1\.3 +4\.0 % +1\.12 +slower")
+        self.assertRegex(p.stdout, r"bench_small:BM_Noisy +20\.1 +26 +1\.29 +1\.29 +4\.3 % +1\.13 +slower")
 
     def test_run_statistics(self):
         run = cb.load_run(self.results(RUN))
@@ -76,7 +88,10 @@ class CompareBaselineTest(unittest.TestCase):
         self.assertEqual(step["repetitions"], 5)  # repetitions only, not the median aggregate
         self.assertAlmostEqual(step["real"]["median_ms"], 10.0)
         self.assertAlmostEqual(step["real"]["noise"], 1.4826 * 0.05 / 10.0)
-        self.assertAlmostEqual(step["real"]["normalised"], 2.0)
+        self.assertAlmostEqual(step["real"]["normalised"], 2.0)  # by BM_Calibration's median
+        self.assertAlmostEqual(step["real"]["adjacent"], 2.0)  # repetition by repetition
+        # Ratios 4.0, 4.198, 3.798, 4.1, 3.884: median 4.0, median absolute deviation 4.0 - 19.5 / 5.02.
+        self.assertAlmostEqual(run["benchmarks"][NOISY]["real"]["adjacent_noise"], 1.4826 * (4.0 - 19.5 / 5.02) / 4.0)
         self.assertAlmostEqual(run["benchmarks"]["bench_small:BM_Long"]["real"]["median_ms"], 1000.0)  # s -> ms
         self.assertEqual(run["host"]["cpu_model"], "Test CPU @ 2.00GHz")
 
@@ -90,7 +105,8 @@ class CompareBaselineTest(unittest.TestCase):
         self.assertIn("0 slower", p.stdout)
         md = (self.tmp / "cmp.md").read_text(encoding="utf-8")
         # CPU time by default (baseline 9.82 ms), wall time on request (10.02 ms).
-        self.assertIn("| bench_small:BM_Step/cells:16/threads:1 | 9.82 | 9.8 | 0.998 | 1 | ", md)
+        self.assertIn("| bench_small:BM_Step/cells:16/threads:1 | 9.82 | 9.8 | 0.998 | 0.998 | 0.8 % | 1.05 | ok |",
+                      md)
         rows, _ = cb.compare(BASELINE, cb.load_run(self.results(RUN)), metric="real")
         self.assertEqual(rows[1]["benchmark"], STEP)
         self.assertAlmostEqual(rows[1]["baseline_ms"], 10.02)
@@ -115,21 +131,29 @@ class CompareBaselineTest(unittest.TestCase):
         self.assertEqual(self.compare(scaled(RUN, 1.08, "BM_Step/cells:16/threads:1/"))[0][STEP]["verdict"], "slower")
         # ... and 3 % does not.
         self.assertEqual(self.compare(scaled(RUN, 1.03, "BM_Step/cells:16/threads:1/"))[0][STEP]["verdict"], "ok")
-        # A noisy calibration widens every normalised limit.
+        # Normalised by BM_Calibration (another host, no adjacent calibration), the
+        # calibration's noise widens the limit too.
+        run = scaled(without_adjacent_calibration(RUN), 1.08, "BM_Step/cells:16/threads:1/")
+        run["context"]["cpu_model"] = "Other CPU"
+        self.assertEqual(self.compare(run)[0][STEP]["verdict"], "slower")
         noisy_calibration = copy.deepcopy(BASELINE)
         for metric in cb.METRICS:
             noisy_calibration["benchmarks"]["bench_small:BM_Calibration"][metric]["noise"] = 0.04
-        rows, _ = self.compare(scaled(RUN, 1.08, "BM_Step/cells:16/threads:1/"), noisy_calibration)
-        self.assertEqual(rows[STEP]["verdict"], "ok")
+        rows, _ = self.compare(run, noisy_calibration)
+        self.assertEqual((rows[STEP]["basis"], rows[STEP]["verdict"]), ("normalised by run", "ok"))
         # Faster beyond the limit is reported, not failed.
         rows, _ = self.compare(scaled(RUN, 0.7, "BM_Step/cells:16/threads:1/"))
         self.assertEqual(rows[STEP]["verdict"], "faster")
         self.assertFalse(cb.failed(list(rows.values())))
 
     def test_slower_machine_is_not_a_regression(self):
-        rows, _ = self.compare(scaled(RUN, 1.25))  # the calibration too
+        rows, _ = self.compare(scaled(RUN, 1.25, calibration=True))
         self.assertAlmostEqual(rows[STEP]["ratio"], 1.25, places=2)
+        self.assertAlmostEqual(rows[STEP]["normalised_ratio"], 1.0, places=2)
         self.assertEqual({r["verdict"] for k, r in rows.items() if "Calibration" not in k}, {"ok"})
+        # Without a calibration next to it, the same host compares absolute times.
+        rows, _ = self.compare(without_adjacent_calibration(scaled(RUN, 1.25, calibration=True)))
+        self.assertEqual((rows[STEP]["basis"], rows[STEP]["verdict"]), ("absolute", "slower"))
 
     def test_missing_and_new_benchmarks_are_reported(self):
         run = copy.deepcopy(RUN)
@@ -146,17 +170,18 @@ class CompareBaselineTest(unittest.TestCase):
         self.assertIn("not run", p.stdout)
 
     def test_host_mismatch_warns_and_compares_normalised(self):
-        run = scaled(RUN, 2.0)  # a host half as fast
+        run = scaled(RUN, 2.0, calibration=True)  # a host half as fast
         run["context"]["cpu_model"] = "Other CPU"
         rows, warnings = self.compare(run)
         self.assertEqual(len(warnings), 1)
         self.assertIn("host differs", warnings[0])
-        self.assertEqual(rows[STEP]["verdict"], "ok")
+        self.assertEqual((rows[STEP]["basis"], rows[STEP]["verdict"]), ("normalised", "ok"))
         p = self.cli(scaled(run, 1.3, "BM_Step/cells:16/threads:1/"))
         self.assertEqual(p.returncode, 1)
         self.assertIn("host differs", p.stderr)
         self.assertIn("host differs", (self.tmp / "cmp.md").read_text(encoding="utf-8"))
-        # Without a calibration nothing can be compared on another host.
+        # Without any calibration nothing can be compared on another host.
+        run = without_adjacent_calibration(run)
         run["benchmarks"] = [b for b in run["benchmarks"] if not b["run_name"].startswith("BM_Calibration")]
         rows, _ = self.compare(run)
         self.assertEqual(rows[STEP]["verdict"], "not compared (no calibration)")
