@@ -99,12 +99,14 @@ def failed(b: dict) -> str | None:
 
 
 def select_rows(benches: list[dict]) -> list[dict]:
-    """With repetitions, each benchmark's median aggregate; errors and single runs as they are."""
+    """With repetitions, each benchmark's median aggregate; errors and single runs as they are.
+    In registration order, whatever order random interleaving ran them in."""
     aggregated = {b.get("run_name") for b in benches if b.get("run_type") == "aggregate"}
-    return [b for b in benches
+    rows = [b for b in benches
             if failed(b) is not None
             or (b.get("run_type") == "aggregate" and b.get("aggregate_name") == "median")
             or (b.get("run_type") != "aggregate" and b.get("run_name") not in aggregated)]
+    return sorted(rows, key=lambda b: (b.get("family_index", 0), b.get("per_family_instance_index", 0)))
 
 
 THREADS = re.compile(r"/threads:(\d+)")

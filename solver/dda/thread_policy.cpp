@@ -9,10 +9,6 @@
 
 namespace hfdda::dda {
 
-namespace {
-std::atomic<int> g_applied_threads{0};
-}  // namespace
-
 int threads_from_environment() {
   const char* text = std::getenv("HFDDA_THREADS");
   if (text == nullptr || *text == '\0') return 1;
@@ -23,8 +19,13 @@ int threads_from_environment() {
   return static_cast<int>(value);
 }
 
+namespace {
+std::atomic<int> g_applied_threads{0};  // for applied_threads()
+}  // namespace
+
 std::string apply_thread_policy(int threads) {
   if (threads < 1) throw std::invalid_argument("the number of threads must be >= 1");
+  g_applied_threads = threads;
   // A parallel region runs with one thread once the active-level limit is reached; with
   // a limit of 0 that is every region, including those with a num_threads clause.
   omp_set_max_active_levels(threads > 1 ? 1 : 0);
@@ -37,7 +38,6 @@ std::string apply_thread_policy(int threads) {
     set(threads);
     blas = "OpenBLAS " + std::to_string(threads);
   }
-  g_applied_threads = threads;
   return "threads: " + std::to_string(threads) + " (CHOLMOD OpenMP " + std::to_string(threads) + ", " + blas + ")";
 }
 
