@@ -250,7 +250,18 @@ def fmt(v, digits: int = 4) -> str:
     return "" if v is None else f"{v:.{digits}g}"
 
 
+def not_run(rows: list[dict]) -> str:
+    """One line for the baseline's benchmarks missing from this run (all but a --filter's)."""
+    missing = [r["benchmark"] for r in rows if r["verdict"] == "not run"]
+    if not missing:
+        return ""
+    return f"{len(missing)} of the baseline's benchmarks not run" + (": " + ", ".join(missing) if len(missing) <= 5
+                                                                     else " (a --filter run?)")
+
+
 def table(rows: list[dict], metric: str) -> tuple[list[str], list[list[str]]]:
+    """The rows of the benchmarks that ran."""
+    rows = [r for r in rows if r["verdict"] != "not run"]
     other = METRICS[1 - METRICS.index(metric)]
     header = ["benchmark", "baseline (ms)", "now (ms)", "ratio", "normalised ratio", "noise", "limit", "verdict",
               f"{other} normalised ratio"]
@@ -267,6 +278,8 @@ def print_text(rows: list[dict], warnings: list[str], baseline: dict, metric: st
     widths = [max(len(x) for x in col) for col in zip(header, *body)]
     for line in [header] + body:
         print("  ".join(x.ljust(w) if i == 0 else x.rjust(w) for i, (x, w) in enumerate(zip(line, widths))))
+    if not_run(rows):
+        print(f"compare_baseline: {not_run(rows)}")
     for w in warnings:
         print(f"compare_baseline: warning: {w}", file=sys.stderr)
     slower = [r["benchmark"] for r in rows if r["verdict"] == "slower"]
@@ -292,6 +305,7 @@ def markdown(rows: list[dict], warnings: list[str], baseline: dict, metric: str,
     header, body = table(rows, metric)
     lines += ["", "| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
     lines += ["| " + " | ".join(x.replace("|", "\\|") for x in r) + " |" for r in body]
+    lines += ["", not_run(rows) + "."] if not_run(rows) else []
     return "\n".join(lines) + "\n"
 
 

@@ -167,7 +167,8 @@ class CompareBaselineTest(unittest.TestCase):
         self.assertEqual(rows["bench_small:BM_Added"]["verdict"], "new")
         p = self.cli(run)
         self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
-        self.assertIn("not run", p.stdout)
+        self.assertIn("2 of the baseline's benchmarks not run: bench_small:BM_Noisy, bench_small:BM_Long", p.stdout)
+        self.assertRegex(p.stdout, r"bench_small:BM_Added +20 +new")
 
     def test_host_mismatch_warns_and_compares_normalised(self):
         run = scaled(RUN, 2.0, calibration=True)  # a host half as fast

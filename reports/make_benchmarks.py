@@ -134,7 +134,8 @@ def threads_table(rows: list[dict]) -> list[str]:
     lines = ["## Threads: 1 vs 2", "",
              "Per step: wall time, and CPU time of the whole process (user + system, all threads). "
              "Speed-up = wall at 1 thread / wall at N; CPU cost = CPU at N / CPU at 1; sys/user = "
-             "system over user CPU time (idle threads spinning in futex and sched_yield).", "",
+             "system over user CPU time (idle threads spinning in futex and sched_yield). What else runs on "
+             "the machine changes the 2-thread rows most: see each binary's load average below.", "",
              "| benchmark | blocks | threads | wall per step (ms) | CPU per step (ms) | speed-up | CPU cost "
              "| sys/user |", "|---|---|---|---|---|---|---|---|"]
     for base, by_threads in groups.items():
