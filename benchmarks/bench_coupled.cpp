@@ -5,11 +5,19 @@
 // runs the whole simulation once and reports per-step means: open-close (outer) and
 // Newton (inner) iterations, factorisations of K, and the ratio of a step's time to
 // one factorisation of K, the floor a step is compared against.
+//
+// Time per step at 1 and 2 threads: the KGD case at dx = 2, 1 and 0.5 m (2,186, 4,880
+// and 5,188 blocks), steps 2 to 4 (step 1, which opens the first joints, runs untimed),
+// with the process's CPU time (all threads) per step beside the wall time.
+//
+// Each benchmark runs once per repetition (Iterations(1)); --benchmark_repetitions is
+// capped at kLongRepetitions for them, so that scripts/bench can ask the short DDA
+// benchmarks for more repetitions without tripling this binary's run time.
 
-#include <benchmark/benchmark.h>
+#include "bench_support.hpp"
 
-#include "dda/thread_policy.hpp"
-
+#include <algorithm>
+#include <chrono>
 #include <string>
 
 #include "io/case_config.hpp"
@@ -43,6 +51,7 @@ output: {every_steps: 0, vtu: false}
 
 void run_case(benchmark::State& state, const io::CaseConfig& config, double target_s) {
   const int steps = static_cast<int>(std::llround(config.time.end_time_s / config.time.dt_s));
+  const bench::AdjacentCalibration calibration(state);
   StepStatistics total;
   int blocks = 0;
   for (auto _ : state) {
@@ -80,13 +89,54 @@ void BM_CoupledSymmetricFree(benchmark::State& state) {
   run_case(state, io::load_case_text(kSymmetricFree, "symmetric_free.yaml"), 0.0);
 }
 
+constexpr int kKgdWarmUpSteps = 1, kKgdTimedSteps = 3;
+
+// range(0): dx in cm (200, 100, 50); range(1): threads.
+void BM_CoupledKgdStep(benchmark::State& state) {
+  const bench::AdjacentCalibration calibration(state);
+  const bench::ScopedThreads threads(static_cast<int>(state.range(1)));
+  const std::string file = state.range(0) == 50 ? "base" : "dx" + std::to_string(state.range(0) / 100);
+  const io::CaseConfig config = io::load_case_file(std::string(HFDDA_SOURCE_DIR) + "/verification/kgd/" + file + ".yaml");
+  StepStatistics total;
+  bench::ProcessCpu cpu;
+  double wall_s = 0.0;
+  int blocks = 0, steps = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    simulation::Model model = simulation::build_model(config);
+    blocks = model.system->n_blocks();
+    for (int s = 0; s < kKgdWarmUpSteps; ++s) model.step->advance(config.time.dt_s, config.numerics.max_step_cuts);
+    state.ResumeTiming();
+    const auto cpu0 = bench::ProcessCpu::now();
+    const auto wall0 = std::chrono::steady_clock::now();
+    for (int s = 0; s < kKgdTimedSteps; ++s) total.accumulate(model.step->advance(config.time.dt_s, config.numerics.max_step_cuts));
+    wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    cpu += bench::ProcessCpu::now() - cpu0;
+    steps += kKgdTimedSteps;
+  }
+  state.counters["blocks"] = blocks;
+  state.counters["steps"] = kKgdTimedSteps;
+  bench::add_step_counters(state, wall_s, cpu, steps);
+  state.counters["outer_per_step"] = double(total.open_close_iterations) / steps;
+  state.counters["factorizations_per_step"] = double(total.factorizations) / steps;
+  state.counters["factorize_s"] = total.seconds_factorization / std::max(1, total.factorizations);
+}
+
 }  // namespace
 
-BENCHMARK(BM_CoupledKgdDx05)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK(BM_CoupledSymmetricFree)->Unit(benchmark::kMillisecond)->Iterations(1);
 int main(int argc, char** argv) {
-  benchmark::AddCustomContext("hfdda_threads", hfdda::dda::apply_thread_policy(hfdda::dda::threads_from_environment()));
-  benchmark::Initialize(&argc, argv);
+  // Registered here, once the command line is known, to cap their repetitions.
+  constexpr int kLongRepetitions = 3;
+  const int repetitions = std::min(hfdda::bench::requested_repetitions(argc, argv), kLongRepetitions);
+  hfdda::bench::initialize(&argc, argv);
+  auto long_benchmark = [&](const char* name, void (*function)(benchmark::State&)) {
+    return benchmark::RegisterBenchmark(name, function)
+        ->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(repetitions)->MeasureProcessCPUTime();
+  };
+  long_benchmark("BM_CoupledKgdDx05", BM_CoupledKgdDx05);
+  long_benchmark("BM_CoupledSymmetricFree", BM_CoupledSymmetricFree);
+  long_benchmark("BM_CoupledKgdStep", BM_CoupledKgdStep)
+      ->ArgNames({"dx_cm", "threads"})->ArgsProduct({{200, 100, 50}, {1, 2}})->UseRealTime();
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -1,15 +1,16 @@
 // Time of one DDA step (assembly, CHOLMOD factorisation, ALM solves, open-close checks)
 // on triangulated meshes of about 1k, 4k and 16k blocks, and of one factorisation of K
-// alone (the floor a step is compared against). Issue target: a 16k-block step < 1 s.
+// alone (the floor a step is compared against). Target: a 16k-block step < 1 s. The
+// steady step and the factorisation run at 1 and 2 threads (the `threads` argument sets
+// the thread policy for that benchmark); CPU time is the whole process's.
 //
 // Problem: a square of 4-triangle cells under 5 MPa vertical compression with a
 // pressurised, initially open crack across its middle third (a Griffith-like load),
 // all joints bonded, ALM contacts, fixed corners.
 
-#include <benchmark/benchmark.h>
+#include "bench_support.hpp"
 
-#include "dda/thread_policy.hpp"
-
+#include <chrono>
 #include <cmath>
 #include <memory>
 
@@ -81,6 +82,7 @@ void add_counters(benchmark::State& state, const dda::BlockSystem& system, const
 
 // A first step from rest (loads applied, contacts settling): the realistic cost.
 void BM_DdaFirstStep(benchmark::State& state) {
+  const bench::AdjacentCalibration calibration(state);
   const int n = static_cast<int>(state.range(0));
   StepStatistics last;
   std::unique_ptr<DdaCase> system;
@@ -94,37 +96,54 @@ void BM_DdaFirstStep(benchmark::State& state) {
   if (4 * n * n >= 16000) state.counters["target_s"] = 1.0;
 }
 
-// A step from an equilibrated state (one open-close iteration).
+// A step from an equilibrated state (one open-close iteration, one ALM solve), at
+// range(1) threads. The steps before it run untimed until the state is equilibrated, so
+// that every thread count and repetition times the same kind of step.
 void BM_DdaSteadyStep(benchmark::State& state) {
+  const bench::AdjacentCalibration calibration(state);  // before the threads: measured at the process's setting
+  const bench::ScopedThreads threads(static_cast<int>(state.range(1)));
   auto system = make_system(static_cast<int>(state.range(0)));
-  system->step(1.0);
-  StepStatistics last;
+  StepStatistics last = system->step(1.0);
+  int warm_up_steps = 1;
+  for (; warm_up_steps < 10 && (last.open_close_iterations > 1 || last.alm_iterations > 1); ++warm_up_steps)
+    last = system->step(1.0);
+  state.counters["warm_up_steps"] = warm_up_steps;
+  const auto cpu0 = bench::ProcessCpu::now();
+  const auto wall0 = std::chrono::steady_clock::now();
   for (auto _ : state) last = system->step(1.0);
+  const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - wall0;
   add_counters(state, *system->system, last);
+  bench::add_step_counters(state, wall.count(), bench::ProcessCpu::now() - cpu0, static_cast<int>(state.iterations()));
 }
 
 // One numeric CHOLMOD factorisation of K (symbolic analysis reused): the floor.
 void BM_FactorizeK(benchmark::State& state) {
+  const bench::AdjacentCalibration calibration(state);
+  const bench::ScopedThreads threads(static_cast<int>(state.range(1)));
   auto system = make_system(static_cast<int>(state.range(0)));
   system->step(1.0);
   dda::SpdSolver solver;
   solver.factorize(system->system->stiffness().matrix());  // symbolic analysis outside the loop
+  const auto cpu0 = bench::ProcessCpu::now();
   for (auto _ : state) solver.factorize(system->system->stiffness().matrix());
+  const auto cpu = bench::ProcessCpu::now() - cpu0;
+  state.counters["sys_over_user"] = cpu.user_s > 0 ? cpu.sys_s / cpu.user_s : 0.0;
   state.counters["blocks"] = system->system->n_blocks();
   state.counters["nnz_K_lower"] = static_cast<double>(system->system->stiffness().matrix().nonZeros());
 }
 
 // Cells per side n gives 4 n^2 blocks: 16 -> 1024, 32 -> 4096, 64 -> 16384.
-BENCHMARK(BM_DdaFirstStep)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_DdaSteadyStep)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_FactorizeK)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DdaFirstStep)->ArgName("cells")->Arg(16)->Arg(32)->Arg(64)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+BENCHMARK(BM_DdaSteadyStep)->ArgNames({"cells", "threads"})->ArgsProduct({{16, 32, 64}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+BENCHMARK(BM_FactorizeK)->ArgNames({"cells", "threads"})->ArgsProduct({{16, 32, 64}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::AddCustomContext("hfdda_build_type", HFDDA_BUILD_TYPE);
-  benchmark::AddCustomContext("hfdda_threads", hfdda::dda::apply_thread_policy(hfdda::dda::threads_from_environment()));
-  benchmark::Initialize(&argc, argv);
+  hfdda::bench::initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

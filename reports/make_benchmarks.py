@@ -7,7 +7,14 @@ Usage:
 One table per JSON file (sorted by file name; benchmarks in run order): name, real
 and CPU time in ms, iterations, every user counter (union over the file, blank when
 a benchmark lacks it) and, when any benchmark has a `target_s` counter, whether its
-real time in seconds meets that target.
+real time in seconds meets that target. With repetitions, a benchmark's row is its
+median aggregate (time and counters), with the number of repetitions.
+
+Benchmarks with a `threads:N` argument also appear in a table "threads 1 vs 2": per
+step, wall and process CPU time (counters step_s and cpu_s, else real and CPU time)
+at each thread count, the speed-up (wall at 1 over wall at N) and the CPU cost (CPU at
+N over CPU at 1). --comparison adds a Markdown section (benchmarks/compare_baseline.py)
+after the header.
 
 Exit status: 0 when the report was written from readable files; 1 when there were
 no JSON files or one could not be read (the report is still written).
@@ -22,6 +29,7 @@ import datetime as _dt
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -90,14 +98,72 @@ def failed(b: dict) -> str | None:
     return None
 
 
+def select_rows(benches: list[dict]) -> list[dict]:
+    """With repetitions, each benchmark's median aggregate; errors and single runs as they are.
+    In registration order, whatever order random interleaving ran them in."""
+    aggregated = {b.get("run_name") for b in benches if b.get("run_type") == "aggregate"}
+    rows = [b for b in benches
+            if failed(b) is not None
+            or (b.get("run_type") == "aggregate" and b.get("aggregate_name") == "median")
+            or (b.get("run_type") != "aggregate" and b.get("run_name") not in aggregated)]
+    return sorted(rows, key=lambda b: (b.get("family_index", 0), b.get("per_family_instance_index", 0)))
+
+
+THREADS = re.compile(r"/threads:(\d+)")
+
+
+def threads_table(rows: list[dict]) -> list[str]:
+    """Per benchmark size, wall and CPU time per step at each thread count."""
+    groups: dict[str, dict[int, dict]] = {}
+    for b in rows:
+        name = str(b.get("run_name", b.get("name", "")))
+        m = THREADS.search(name)
+        if m and failed(b) is None:
+            base = re.sub(r"/(process_time|real_time|iterations:\d+|repeats:\d+)", "", THREADS.sub("", name))
+            groups.setdefault(base, {})[int(m.group(1))] = b
+    groups = {k: v for k, v in groups.items() if 1 in v and len(v) > 1}
+    if not groups:
+        return []
+
+    def per_step(b: dict, counter: str, key: str) -> float | None:
+        if is_number(b.get(counter)):
+            return 1e3 * float(b[counter])
+        factor = TO_MS.get(b.get("time_unit", "ns"))
+        return float(b[key]) * factor if is_number(b.get(key)) and factor else None
+
+    lines = ["## Threads: 1 vs 2", "",
+             "Per step: wall time, and CPU time of the whole process (user + system, all threads). "
+             "Speed-up = wall at 1 thread / wall at N; CPU cost = CPU at N / CPU at 1; sys/user = "
+             "system over user CPU time (idle threads spinning in futex and sched_yield). What else runs on "
+             "the machine changes the 2-thread rows most: see each binary's load average below.", "",
+             "| benchmark | blocks | threads | wall per step (ms) | CPU per step (ms) | speed-up | CPU cost "
+             "| sys/user |", "|---|---|---|---|---|---|---|---|"]
+    for base, by_threads in groups.items():
+        wall1 = per_step(by_threads[1], "step_s", "real_time")
+        cpu1 = per_step(by_threads[1], "cpu_s", "cpu_time")
+        for n in sorted(by_threads):
+            b = by_threads[n]
+            wall, cpu = per_step(b, "step_s", "real_time"), per_step(b, "cpu_s", "cpu_time")
+            speedup = f"{wall1 / wall:.2f}" if wall and wall1 and n != 1 else ""
+            cost = f"{cpu / cpu1:.2f}" if cpu and cpu1 and n != 1 else ""
+            lines.append(f"| {fmt(base)} | {fmt(b.get('blocks'))} | {n} | {fmt(wall)} | {fmt(cpu)} | {speedup} "
+                         f"| {cost} | {fmt(b.get('sys_over_user'))} |")
+    return lines + [""]
+
+
+def read_results(path: Path) -> tuple[dict, list[dict]]:
+    data = json.loads(path.read_text(encoding="utf-8"))
+    ctx = data.get("context", {}) or {}
+    benches = data.get("benchmarks", []) or []
+    if not isinstance(ctx, dict) or not isinstance(benches, list):
+        raise ValueError("unexpected layout (need 'context' object and 'benchmarks' list)")
+    return ctx, [b for b in benches if isinstance(b, dict)]
+
+
 def render_file(path: Path) -> tuple[list[str], bool]:
     lines = [f"## {path.stem}", ""]
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-        ctx = data.get("context", {}) or {}
-        benches = data.get("benchmarks", []) or []
-        if not isinstance(ctx, dict) or not isinstance(benches, list):
-            raise ValueError("unexpected layout (need 'context' object and 'benchmarks' list)")
+        ctx, benches = read_results(path)
     except (OSError, ValueError, AttributeError) as e:
         return lines + [f"**Unreadable:** `{path.name}`: {e}", ""], False
 
@@ -115,9 +181,12 @@ def render_file(path: Path) -> tuple[list[str], bool]:
         lines += ["- " + "; ".join(extra)]
     lines.append("")
 
-    benches = [b for b in benches if isinstance(b, dict)]
     if not benches:
         return lines + ["No benchmarks in this file.", ""], True
+    benches = select_rows(benches)
+    reps = max((int(b["repetitions"]) for b in benches if is_number(b.get("repetitions"))), default=1)
+    if reps > 1:
+        lines[-1:] = [f"- rows with repetitions: median of up to {reps} repetitions (time and counters)", ""]
 
     counters: list[str] = []
     for b in benches:
@@ -168,7 +237,7 @@ def utc_now() -> str:
     return now.strftime("%Y-%m-%d %H:%M:%S UTC")
 
 
-def write_report(results: Path, out: Path) -> int:
+def write_report(results: Path, out: Path, comparison: Path | None = None) -> int:
     files = sorted(results.glob("*.json")) if results.is_dir() else []
     lines = ["# HFDDA benchmarks", "",
              f"- generated: {utc_now()}",
@@ -178,6 +247,19 @@ def write_report(results: Path, out: Path) -> int:
     ok = bool(files)
     if not files:
         lines += [f"**No benchmark results found** in `{results}`.", ""]
+    if comparison is not None:
+        try:
+            lines += [comparison.read_text(encoding="utf-8").rstrip("\n"), ""]
+        except OSError as e:
+            lines += [f"**Comparison unreadable:** {e}", ""]
+            ok = False
+    rows = []
+    for f in files:
+        try:
+            rows += select_rows(read_results(f)[1])
+        except (OSError, ValueError, AttributeError):
+            pass  # reported by render_file below
+    lines += threads_table(rows)
     for f in files:
         section, readable = render_file(f)
         ok &= readable
@@ -192,8 +274,9 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--results", type=Path, required=True, help="directory of Google Benchmark JSON files")
     ap.add_argument("--out", type=Path, required=True, help="markdown file to write")
+    ap.add_argument("--comparison", type=Path, help="Markdown section to include (baseline comparison)")
     args = ap.parse_args(argv)
-    return write_report(args.results, args.out)
+    return write_report(args.results, args.out, args.comparison)
 
 
 if __name__ == "__main__":

@@ -218,6 +218,22 @@ class MakeBenchmarksTest(unittest.TestCase):
         self.assertIn("| BM_Factorise/512 | 1.5 | 1.49 | 100 |  |  | 42000 |  |", md)
         self.assertIn("| BM_Broken | error: solver diverged |", md)
 
+    def test_repetitions_and_threads_table(self):
+        results = HERE.parent / "benchmarks" / "testdata" / "run"
+        with tempfile.TemporaryDirectory() as tmp:
+            out, comparison = Path(tmp) / "BENCHMARKS.md", Path(tmp) / "cmp.md"
+            comparison.write_text("## Comparison with the baseline\n\nstub\n", encoding="utf-8")
+            self.assertEqual(make_benchmarks.write_report(results, out, comparison), 0)
+            md = out.read_text(encoding="utf-8")
+        self.assertIn("## Comparison with the baseline\n\nstub\n", md)
+        self.assertIn("median of up to 5 repetitions", md)
+        # One row per benchmark: the median aggregate, not the repetitions.
+        self.assertEqual(md.count("| BM_Step/cells:16/threads:1/process_time/real_time"), 1)
+        self.assertIn("| BM_Step/cells:16/threads:1/process_time/real_time_median | 10 | 9.8 | 5 |", md)
+        self.assertIn("| BM_Step/cells:16 | 1024 | 1 | 10 | 9.8 |  |  |  |", md)
+        self.assertIn("| BM_Step/cells:16 | 1024 | 2 | 8 | 15.2 | 1.25 | 1.55 |  |", md)
+        self.assertLess(md.index("## Comparison"), md.index("## Threads: 1 vs 2"))
+
     def test_no_benchmarks(self):
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "BENCHMARKS.md"

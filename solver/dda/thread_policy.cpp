@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <omp.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -20,8 +21,13 @@ int threads_from_environment() {
   return static_cast<int>(value);
 }
 
+namespace {
+std::atomic<int> g_applied_threads{0};  // for applied_threads()
+}  // namespace
+
 std::string apply_thread_policy(int threads) {
   if (threads < 1) throw std::invalid_argument("the number of threads must be >= 1");
+  g_applied_threads = threads;
   // A parallel region runs with one thread once the active-level limit is reached; with
   // a limit of 0 that is every region, including those with a num_threads clause.
   omp_set_max_active_levels(threads > 1 ? 1 : 0);
@@ -37,5 +43,7 @@ std::string apply_thread_policy(int threads) {
   return "threads: " + std::to_string(threads) + " (CHOLMOD OpenMP " + std::to_string(threads) + ", " + blas +
          (threads == 1 ? std::string(", ") + serial_region_note() : std::string()) + ")";
 }
+
+int applied_threads() { return g_applied_threads; }
 
 }  // namespace hfdda::dda

@@ -2,7 +2,8 @@
 // The one thread setting of HFDDA: how many threads the sparse Cholesky factorisation
 // (CHOLMOD, OpenMP) and the BLAS under it (OpenBLAS) may use. Programs call
 // apply_thread_policy() once at start-up, with the value of `--threads N` or of the
-// environment variable HFDDA_THREADS (default 1).
+// environment variable HFDDA_THREADS (default 1). It may be called again to change the
+// setting for the whole process (the benchmarks compare 1 and 2 threads this way).
 //
 // Why the default is 1: CHOLMOD 3.0 (SuiteSparse 5.12) asks for 4 OpenMP threads in its supernodal
 // factorisation whatever OMP_NUM_THREADS says, and idle OpenMP and OpenBLAS threads spin
@@ -18,9 +19,15 @@ namespace hfdda::dda {
 /// naming the variable for any other value.
 int threads_from_environment();
 
-/// Caps CHOLMOD's OpenMP parallel regions and OpenBLAS at `threads` (>= 1). With 1, no
-/// OpenMP region of CHOLMOD runs in parallel (max active levels 0). Returns what was set,
-/// as one line for logs.
+/// Sets the OpenMP and OpenBLAS thread counts to `threads` (>= 1). With 1, no OpenMP
+/// region of CHOLMOD runs in parallel (max active levels 0). With more, OpenBLAS runs
+/// `threads` threads but CHOLMOD's OpenMP loops, which carry a num_threads(4) clause,
+/// run 4 (measured: 5 threads in the process at 2; only OMP_THREAD_LIMIT, read at
+/// program start, would cap them). Returns what was set, as one line for logs. Call it
+/// from the main thread; a later call replaces the setting.
 std::string apply_thread_policy(int threads);
+
+/// The value of the last apply_thread_policy() call, 0 before any.
+int applied_threads();
 
 }  // namespace hfdda::dda
