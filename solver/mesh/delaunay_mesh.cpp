@@ -237,6 +237,7 @@ void reject_near_misses(const DelaunayMeshSpec& spec) {
         const Piece& s = pieces[k];
         if (s.feature == owner.feature || p == s.a || p == s.b) continue;
         const Vec2 d = s.b - s.a;
+        if (d.squaredNorm() == 0.0) continue;  // a piece clamped to a point on the boundary
         const double t = std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
         const double distance = (p - (s.a + t * d)).norm();
         if (distance >= tol) continue;
