@@ -530,6 +530,37 @@ double FlowNetwork::mass_balance_error() const {
   return std::abs(supplied - stored_mass() - leaked_kg_) / supplied;
 }
 
+double FlowNetwork::volume_stored_mass() const {
+  // Volume per point from the committed apertures of the wetted fractures.
+  std::vector<double> volume(point_state_.size(), 0.0);
+  for (int f = 0; f < n_fractures(); ++f) {
+    if (!wetted_[f]) continue;
+    const double half = 0.5 * fractures_[f].length_m;
+    volume[fractures_[f].point_p] += half * aperture_[2 * f];
+    volume[fractures_[f].point_q] += half * aperture_[2 * f + 1];
+  }
+  double m = 0.0;
+  for (std::size_t point = 0; point < volume.size(); ++point) {
+    if (!reached_[point] || volume[point] == 0.0) continue;
+    const double state = point_state_[point];  // pressure if full, fill fraction - 1 if not
+    const double density = state >= 0.0 ? fluid_.density(state) : fluid_.density(0.0) * (1.0 + state);
+    m += density * volume[point];
+  }
+  return m;
+}
+
+double FlowNetwork::volume_balance_error() const {
+  const double supplied = injected_kg_ + initial_mass_;
+  if (supplied <= 0.0) return 0.0;
+  return std::abs(supplied - volume_stored_mass() - leaked_kg_) / supplied;
+}
+
+int FlowNetwork::n_nodes() const {
+  int n = 0;
+  for (char r : reached_) n += r != 0;
+  return n;
+}
+
 double FlowNetwork::aperture_at_point(int point) const {
   double sum = 0.0;
   int count = 0;

@@ -132,9 +132,24 @@ class FlowNetwork {
   double injected_mass() const { return injected_kg_; }
   double initial_mass() const { return initial_mass_; }
   double leaked_mass() const { return leaked_kg_; }
+  /// Stored mass of the ledger: each node's mass is updated by what flowed in and out
+  /// (old + injected - leaked - outflow), so this closes with injected - leaked by
+  /// construction, whether or not the flow solve converged.
   double stored_mass() const;
-  /// |initial + injected - stored - leaked| / (initial + injected); 0 without any fluid.
+  /// |initial + injected - stored - leaked| / (initial + injected) with the ledger's
+  /// stored mass; 0 without any fluid. A check of the bookkeeping only.
   double mass_balance_error() const;
+  /// Fluid mass held by the committed state, computed without the ledger: per node the
+  /// fill density of its committed state (rho(p) if full, rho(0) times the fill fraction
+  /// if partly filled) times its volume sum L/2 w from the committed apertures [kg].
+  double volume_stored_mass() const;
+  /// |initial + injected - leaked - volume_stored_mass| / (initial + injected); 0 without
+  /// any fluid. Differs from mass_balance_error by the sum of the last solve's mass
+  /// residuals, so it exposes an unconverged flow solve or apertures that do not match
+  /// the fluid's (docs/design_notes.md, "Mass ledger and volume check").
+  double volume_balance_error() const;
+  /// Nodes of the committed network (points the fluid has reached).
+  int n_nodes() const;
   const FluidProperties& fluid() const { return fluid_; }
   const FlowSettings& settings() const { return settings_; }
 

@@ -75,6 +75,21 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
     const double v = f.value(r.totals);
     solver[f.name] = f.integer ? nlohmann::json(static_cast<long long>(v)) : nlohmann::json(v);
   }
+  if (const fluid::FlowNetwork* flow = model.flow.get()) {
+    // Both mass checks: the ledger's (closes by construction) and the volume's (independent).
+    double max_volume_error = 0.0;
+    if (!r.record.empty())
+      for (double e : r.record.series("mass_volume_error")) max_volume_error = std::max(max_volume_error, e);
+    j["fluid"] = {{"mass_initial_kg", flow->initial_mass()},
+                  {"mass_injected_kg", flow->injected_mass()},
+                  {"mass_leaked_kg", flow->leaked_mass()},
+                  {"mass_stored_kg", flow->stored_mass()},
+                  {"mass_volume_kg", flow->volume_stored_mass()},
+                  {"mass_balance_error", flow->mass_balance_error()},
+                  {"mass_volume_error", flow->volume_balance_error()},
+                  {"max_mass_volume_error", max_volume_error},
+                  {"nodes", flow->n_nodes()}};
+  }
   if (model.ramp) {
     const LoadRampOutcome& o = model.ramp->outcome();
     auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
