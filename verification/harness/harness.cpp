@@ -189,7 +189,9 @@ Study load_study(const std::string& path) {
 // ----------------------------------------------------------------------- checks
 
 /// One comparison of a measured value with its threshold. A value that is not finite
-/// (a run that did not produce it) never passes.
+/// (a run that did not produce it) never passes, and never counts as an expected
+/// failure either: a crash, a NaN or a missing output is a failed check whatever was
+/// expected.
 struct Check {
   std::string name;
   double value;
@@ -198,6 +200,12 @@ struct Check {
   std::string expected;      // "pass" or "fail" (a known, documented failure)
   std::string note;
   bool gating;
+  /// The run the value comes from reached its end time (true for a study-level check,
+  /// whose variants have completion checks of their own).
+  bool run_completed = true;
+  /// An expected failure that is a stop: the run stopped with this error (the check's
+  /// `expected_stop`, found in the variant's message).
+  bool stopped_as_expected = false;
 
   bool passed() const {
     if (!std::isfinite(value)) return false;
@@ -209,7 +217,14 @@ struct Check {
     if (comparison == ">") return value > t;
     return value == t;  // "=="
   }
-  bool matches() const { return passed() == (expected == "pass"); }
+  /// Whether the outcome is the expected one. An expected failure is either a
+  /// completed run whose finite value misses the threshold, or a stop with the named
+  /// error; nothing else.
+  bool matches() const {
+    if (expected == "pass") return passed();
+    if (stopped_as_expected) return true;
+    return run_completed && std::isfinite(value) && !passed();
+  }
 };
 
 bool listed(const YAML::Node& node, const std::string& value) {
@@ -299,6 +314,14 @@ std::optional<Check> make_check(const Study& s, const YAML::Node& original, cons
     study_error(s, t, "comparison 'in' takes [lo, hi]; the others a number");
   c.expected = node["expected"] ? node["expected"].as<std::string>() : "pass";
   if (c.expected != "pass" && c.expected != "fail") study_error(s, node["expected"], "expected is pass or fail");
+  const std::string expected_stop = node["expected_stop"] ? node["expected_stop"].as<std::string>() : "";
+  if (!expected_stop.empty() && c.expected != "fail")
+    study_error(s, node["expected_stop"], "expected_stop names the error of an expected failure (expected: fail)");
+  if (v) {
+    c.run_completed = v->run.completed;
+    c.stopped_as_expected = v->run.built && !v->run.completed && !expected_stop.empty() &&
+                            v->run.message.find(expected_stop) != std::string::npos;
+  }
   const std::string gating = node["gating"] ? node["gating"].as<std::string>() : "false";
   c.gating = gating == "true" || gating == study.tier;
   c.note = node["note"] ? expand(s, node["note"].as<std::string>(), v, study) : "";
@@ -328,6 +351,65 @@ std::optional<Check> make_check(const Study& s, const YAML::Node& original, cons
   return c;
 }
 
+/// The completion check of a variant that has none in study.yaml: every variant must
+/// reach its end time (gating), unless its `expected_stop` attribute names the error
+/// it is known to stop with.
+Check completion_check(const VariantOutcome& v) {
+  Check c;
+  c.name = v.variant().label + ": run completed";
+  c.value = v.run.completed ? 1.0 : 0.0;
+  c.threshold = 1.0;
+  c.comparison = "==";
+  c.gating = true;
+  c.note = v.run.message;
+  c.expected = "pass";
+  if (v.variant().has("expected_stop")) {
+    const std::string& stop = v.variant().text("expected_stop");
+    c.expected = "fail";
+    c.run_completed = v.run.completed;
+    c.stopped_as_expected = v.run.built && !v.run.completed && v.run.message.find(stop) != std::string::npos;
+    c.note = "expected to stop with \"" + stop + "\"" + (v.run.message.empty() ? "" : ": " + v.run.message);
+  }
+  return c;
+}
+
+bool has_completion_check(const Study& s, const VariantOutcome& v, const std::string& tier) {
+  for (const auto& group : s.groups)
+    for (const YAML::Node& node : group) {
+      const bool study_scope = node["scope"] && node["scope"].as<std::string>() == "study";
+      if (study_scope || !node["metric"] || node["metric"].as<std::string>() != "completed") continue;
+      if (listed(node["tiers"], tier) && listed(node["variants"], v.variant().name)) return true;
+    }
+  return false;
+}
+
+/// Numbers the runner computes for every run with a flow network, from its record:
+/// the largest mass_volume_error over the steps (the stored mass recomputed from the
+/// committed apertures, independent of the ledger), the same per flow node (the flow
+/// solve bounds each node's residual by its tolerance times the step's mass, so this
+/// is bounded by the tolerance), and the ledger's own largest error. A case's metrics
+/// may not define these names.
+void add_runner_numbers(const VariantRun& r, const simulation::Model& model, Metrics& m) {
+  if (!model.flow) return;
+  const simulation::RunRecord& record = r.record();
+  double volume = record.empty() ? kNaN : 0.0, per_node = volume, ledger = volume;
+  for (std::size_t row = 0; row < record.rows(); ++row) {
+    const double e = record.value(row, "mass_volume_error"), nodes = record.value(row, "flow_nodes");
+    // A NaN propagates (std::max would drop it), so a broken step cannot pass.
+    volume = std::isnan(e) || std::isnan(volume) ? kNaN : std::max(volume, e);
+    per_node = std::isnan(e) || std::isnan(per_node) ? kNaN : std::max(per_node, nodes > 0 ? e / nodes : e);
+    const double l = record.value(row, "mass_balance_error");
+    ledger = std::isnan(l) || std::isnan(ledger) ? kNaN : std::max(ledger, l);
+  }
+  for (const auto& [name, value] : {std::pair<std::string, double>{"max_mass_volume_error", volume},
+                                    {"max_mass_volume_error_per_node", per_node},
+                                    {"max_ledger_mass_error", ledger}}) {
+    if (m.numbers.count(name)) throw std::runtime_error("case metrics define '" + name + "', a name of the runner's");
+    m.numbers[name] = value;
+    m.json[name] = finite_or_null(value);
+  }
+}
+
 /// Writes the checks into result["checks"] and result["status"]; returns whether every
 /// gating check matches its expectation.
 bool record_checks(const std::vector<Check>& checks, nlohmann::json& result) {
@@ -338,7 +420,7 @@ bool record_checks(const std::vector<Check>& checks, nlohmann::json& result) {
     if (c.gating) gating_match = gating_match && c.matches();
     result["checks"].push_back({{"name", c.name}, {"value", finite_or_null(c.value)}, {"threshold", c.threshold},
                                 {"comparison", c.comparison}, {"expected", c.expected}, {"passed", c.passed()},
-                                {"gating", c.gating}, {"note", c.note}});
+                                {"as_expected", c.matches()}, {"gating", c.gating}, {"note", c.note}});
   }
   result["status"] = all_match ? "pass" : "fail";
   return gating_match;
@@ -415,6 +497,7 @@ VariantOutcome run_variant(const VariantSpec& spec, const CaseDefinition& def, c
   }
   r.model = r.built ? &model : nullptr;
   out.metrics = def.metrics(r);
+  if (r.built) add_runner_numbers(r, model, out.metrics);
   r.model = nullptr;  // the model ends here
   write_files(out_dir, out.metrics.files);
   return out;
@@ -471,6 +554,8 @@ int run_harness(int argc, char** argv, const CaseDefinition& def) {
     write_files(out_dir, outcome.metrics.files);
 
     std::vector<Check> checks;
+    for (const VariantOutcome& v : outcome.variants)
+      if (!has_completion_check(study, v, tier)) checks.push_back(completion_check(v));
     for (const auto& group : study.groups) {
       const bool study_scope = group.size() == 1 && group[0]["scope"] && group[0]["scope"].as<std::string>() == "study";
       if (study_scope) {
