@@ -56,12 +56,27 @@ int usage_error(const std::string& message) {
   return 2;
 }
 
+/// DIR as an absolute path without "." and ".." parts or a trailing separator.
+std::filesystem::path absolute_directory(const std::string& dir, std::error_code& ec) {
+  std::filesystem::path p = std::filesystem::absolute(dir, ec).lexically_normal();
+  if (!p.has_filename() && p.has_relative_path()) p = p.parent_path();
+  return p;
+}
+
 /// Makes DIR ready for a run; the reason if it cannot be used. A directory holding a
 /// previous run is refused unless `force` (then emptied); a restart needs its checkpoint.
-std::string prepare_output_directory(const std::string& dir, bool force, bool restart) {
+/// `created` is set to the outermost directory this call created (empty: none), so that
+/// a run that stops before writing anything can leave the file system as it found it.
+std::string prepare_output_directory(const std::string& dir, bool force, bool restart, std::filesystem::path& created) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path path(dir);
+  created.clear();
+  for (fs::path p = absolute_directory(dir, ec); !ec && !p.empty() && !fs::exists(p, ec);
+       p = p.parent_path()) {
+    created = p;
+    if (p == p.parent_path()) break;
+  }
   if (fs::exists(path, ec) && !fs::is_directory(path, ec)) return "output '" + dir + "' exists and is not a directory";
   const std::string checkpoint = hfdda::simulation::checkpoint_path(dir);
   if (restart) {
@@ -84,13 +99,29 @@ std::string prepare_output_directory(const std::string& dir, bool force, bool re
       }
   }
   fs::create_directories(path, ec);
-  if (ec) return "cannot create output directory '" + dir + "': " + ec.message();
+  if (ec) {
+    created.clear();  // nothing to take back, or only what a failed call left: kept, not guessed at
+    return "cannot create output directory '" + dir + "': " + ec.message();
+  }
   const std::string probe = dir + "/.hfdda-write-test." + std::to_string(::getpid());
   std::FILE* file = std::fopen(probe.c_str(), "wb");
   if (file == nullptr) return "output directory '" + dir + "' is not writable: " + std::strerror(errno);
   std::fclose(file);
   std::remove(probe.c_str());
   return {};
+}
+
+/// Takes back the directories prepare_output_directory created, from DIR up to
+/// `created`, when the run stops before writing into them. Only empty directories are
+/// removed: one that holds anything, or existed before, is left alone.
+void remove_created_directories(const std::string& dir, const std::filesystem::path& created) {
+  namespace fs = std::filesystem;
+  if (created.empty()) return;
+  std::error_code ec;
+  for (fs::path p = absolute_directory(dir, ec); !ec && !p.empty(); p = p.parent_path()) {
+    if (!fs::remove(p, ec) || ec) return;  // fs::remove takes only an empty directory
+    if (p == created || p == p.parent_path()) return;
+  }
 }
 
 bool whole_number(const std::string& value, int min) {
@@ -132,14 +163,23 @@ int run_command(int argc, char** argv, bool check_only) {
   if (!quiet && !check_only) std::fprintf(stderr, "%s; %s\n", thread_note.c_str(), memory_note.c_str());
 
   const hfdda::io::CaseConfig config = hfdda::io::load_case_file(case_file);
+  std::filesystem::path created;  // outermost directory made for the outputs (empty: none)
   if (!check_only) {
-    const std::string problem = prepare_output_directory(out_dir, force, restart);
+    // Before the model is built: an unusable DIR is refused without waiting for the mesh.
+    const std::string problem = prepare_output_directory(out_dir, force, restart, created);
     if (!problem.empty()) {
       std::fprintf(stderr, "hfdda: %s\n", problem.c_str());
       return 2;
     }
   }
-  hfdda::simulation::Model model = hfdda::simulation::build_model(config);
+  hfdda::simulation::Model model = [&] {
+    try {
+      return hfdda::simulation::build_model(config);
+    } catch (...) {
+      remove_created_directories(out_dir, created);
+      throw;
+    }
+  }();
   const auto& system = *model.system;
   if ((check_only || !quiet) && config.load_ramp)
     std::fprintf(stderr, "%s: %d blocks, %zu joints, %zu points, load ramp (%s), one static step of %g s per level\n",

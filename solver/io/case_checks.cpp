@@ -133,9 +133,105 @@ void check_lengths(const CaseConfig& c, const MergedChecker& m) {
     key = cells > 0 && fine_area / c.mesh.max_area_inner_m2 >= cells / 2 ? "mesh.max_area_inner"
                                                                         : "mesh.max_area_outer";
   }
-  if (cells > kMaxCells)
-    m.fail(key, "would make about " + format_number(std::round(cells)) + " cells; at most " +
-                    format_number(kMaxCells) + " are allowed");
+  // A Delaunay mesh has at least a triangle on each side of every constraint piece.
+  double piece_cells = 0, most_pieces = 0;
+  for (std::size_t i = 0; c.mesh.kind == MeshKind::delaunay && i < c.fractures.size(); ++i) {
+    const FractureConfig& f = c.fractures[i];
+    if (f.segment_length_m <= 0) continue;
+    const double pieces = std::ceil((f.to - f.from).norm() / f.segment_length_m);
+    piece_cells += 2 * pieces;
+    if (pieces > most_pieces) {
+      most_pieces = pieces;
+      if (2 * pieces > cells) key = item_key("fractures", i) + ".segment_length";
+    }
+  }
+  if (cells + piece_cells > kMaxCells)
+    m.fail(key, "would make about " + format_number(std::round(cells + piece_cells)) + " cells" +
+                    (piece_cells > 0 ? " (" + format_number(std::round(piece_cells)) +
+                                           " of them along the fracture pieces of segment_length)"
+                                     : std::string()) +
+                    "; at most " + format_number(kMaxCells) + " are allowed");
+}
+
+/// What segment_length is for: the length of the constraint pieces a Delaunay mesh
+/// splits a fracture into. The refinement grades the triangles from the pieces to the
+/// area bound, and stops checking angles of triangles with an edge below 1e-3 of the
+/// mesh size (mesh/delaunay_mesh.cpp): around pieces that short it gives up or runs out
+/// of memory, so pieces must be at least 10 times longer.
+void check_segment_lengths(const CaseConfig& c, const MergedChecker& m) {
+  for (std::size_t i = 0; i < c.fractures.size(); ++i) {
+    const FractureConfig& f = c.fractures[i];
+    const std::string key = item_key("fractures", i) + ".segment_length";
+    if (f.segment_length_m <= 0) continue;
+    if (c.mesh.kind == MeshKind::structured)
+      m.fail(key, "is only used by a Delaunay mesh (mesh.type: delaunay); a structured mesh makes a fracture of "
+                  "its cell edges, of mesh.cell_size (got " + format_number(f.segment_length_m) +
+                      "); remove it or set mesh.type: delaunay");
+    const bool inner_only = !c.domain.inner || (c.domain.inner->contains(f.from) && c.domain.inner->contains(f.to));
+    const bool outer_larger = !inner_only && c.mesh.max_area_outer_m2 > c.mesh.max_area_inner_m2;
+    const double area = outer_larger ? c.mesh.max_area_outer_m2 : c.mesh.max_area_inner_m2;
+    const double size = std::sqrt(area);
+    if (f.segment_length_m < kMinSegmentFraction * size)
+      m.fail(key, "must be at least " + format_number(kMinSegmentFraction) + " of the mesh size it meets, sqrt(mesh." +
+                      (outer_larger ? "max_area_outer" : "max_area_inner") + ") = " + format_number(size) +
+                      " m, i.e. >= " + format_number(kMinSegmentFraction * size) + " m (got " +
+                      format_number(f.segment_length_m) +
+                      "): the Delaunay refinement cannot grade its triangles down to pieces that short; "
+                      "0 gives pieces of the mesh size");
+  }
+}
+
+}  // namespace
+
+/// The traction of a stress on a side is sigma . n: sxx loads only the left and right
+/// sides, syy only the bottom and top, sxy every side. A component that no listed side
+/// carries would be dropped without a word.
+void check_stress_sides(const MergedChecker& m, const std::string& section, double sxx, double syy, double sxy,
+                        const std::vector<std::string>& sides, const std::string& what) {
+  if (sxx == 0 && syy == 0 && sxy == 0) return;
+  const auto has = [&](const char* side) { return std::find(sides.begin(), sides.end(), side) != sides.end(); };
+  const std::string listed =
+      section + ".sides is [" + join(sides, ", ") + "]" + (m.present(section + ".sides") ? "" : " (the default)");
+  if (sides.empty())
+    m.fail(section + ".sides", "is empty, so " + what + " (sxx " + format_number(sxx) + ", syy " + format_number(syy) +
+                                   ", sxy " + format_number(sxy) + ") would act on no side and load nothing; list "
+                                   "the sides it acts on");
+  if (sxx != 0 && !has("left") && !has("right"))
+    m.fail(section + ".sxx", "acts only on the left and right sides (the traction is sigma . n), but " + listed +
+                                 ", with neither, so it would load nothing; add left and right to sides");
+  if (syy != 0 && !has("bottom") && !has("top"))
+    m.fail(section + ".syy", "acts only on the bottom and top sides (the traction is sigma . n), but " + listed +
+                                 ", with neither, so it would load nothing; add bottom and top to sides");
+}
+
+namespace {
+
+void check_far_field_sides(const CaseConfig& c, const MergedChecker& m) {
+  if (c.far_field.in_situ) return;  // the in-situ stress acts on all four sides
+  const FarFieldConfig& f = c.far_field;
+  check_stress_sides(m, "far_field", f.sxx_Pa, f.syy_Pa, f.sxy_Pa, f.sides, "the far-field stress");
+}
+
+/// A prescribed pressure loads the faces of open joints; on a bonded joint the bond
+/// carries it and nothing happens. A fracture that is not initially open opens only
+/// where its joints break, and a joint breaks only next to an open one (seed 2.3).
+void check_pressure_applies(const CaseConfig& c, const MergedChecker& m) {
+  bool any_open = false;
+  for (const auto& f : c.fractures) any_open = any_open || f.initially_open;
+  for (std::size_t i = 0; i < c.fractures.size(); ++i) {
+    const FractureConfig& f = c.fractures[i];
+    if (!f.pressure_Pa || f.initially_open) continue;
+    const std::string key = item_key("fractures", i) + ".pressure";
+    const std::string rule = "acts only on open joints: on a fracture without initially_open: true, only on joints "
+                             "that break open during the run; ";
+    if (!f.breakable.value_or(c.joints.breakable))
+      m.fail(key, rule + "the joints of this one are not breakable (" +
+                      (f.breakable ? "breakable: false" : "joints.breakable: false") +
+                      "), so they stay bonded and the pressure would do nothing; give initially_open: true");
+    if (!any_open)
+      m.fail(key, rule + "a joint breaks only next to an open one, and no fracture is initially open, so the "
+                         "pressure would do nothing; give initially_open: true");
+  }
 }
 
 void check_material_regions(const CaseConfig& c, const MergedChecker& m) {
@@ -233,6 +329,20 @@ const std::vector<CrossCheck>& cross_checks() {
        "`domain.outer`, the triangle areas of a Delaunay mesh at most its area, and the mesh has at most about 1e7 cells "
        "(the inner rectangle, or the domain, over the cell size squared or the largest triangle area).",
        check_lengths},
+      {"`fractures[].segment_length` > 0 needs `mesh.type: delaunay` (a structured mesh makes a fracture of its cell "
+       "edges) and is at least 0.01 of the mesh size it meets: the square root of `mesh.max_area_inner`, or of the "
+       "larger of `max_area_inner` and `max_area_outer` when an end of the fracture lies outside `domain.inner` (the "
+       "refinement cannot grade its triangles down to shorter pieces); its pieces count towards the 1e7 cells, two "
+       "per piece.",
+       check_segment_lengths},
+      {"Without `far_field.in_situ`, a non-zero far-field stress needs a side to act on: `far_field.sides` is not "
+       "empty, `sxx` needs `left` or `right` and `syy` needs `bottom` or `top` (the traction on a side is sigma . n); "
+       "the same holds for the stress pattern and `sides` of `load_ramp`.",
+       check_far_field_sides},
+      {"`fractures[].pressure` acts on open joints: without `initially_open: true` on the same fracture, only on "
+       "joints that break open during the run, so they must be breakable and some fracture initially open (a joint "
+       "breaks only next to an open one, seed 2.3).",
+       check_pressure_applies},
       {"A material with region `inner` or `outer` needs `domain.inner`; a material box "
        "overlaps `domain.outer`.",
        check_material_regions},

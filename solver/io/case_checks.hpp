@@ -36,6 +36,15 @@ struct CrossCheck {
   void (*check)(const CaseConfig&, const MergedChecker&);
 };
 
+/// Shortest Delaunay constraint piece (`fractures[].segment_length`), as a fraction of
+/// the mesh size sqrt(max_area) it meets.
+inline constexpr double kMinSegmentFraction = 0.01;
+
+/// Refuses a non-zero stress (sxx, syy, sxy of `section`) that no side in `sides`
+/// would carry; `what` names it in the message ("the far-field stress").
+void check_stress_sides(const MergedChecker& m, const std::string& section, double sxx, double syy, double sxy,
+                        const std::vector<std::string>& sides, const std::string& what);
+
 /// Every check across keys, in the order they run and are documented.
 const std::vector<CrossCheck>& cross_checks();
 

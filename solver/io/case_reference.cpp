@@ -63,18 +63,25 @@ marked *required*. A complete example is
   items start from the item defaults below. Chains are allowed; a cycle is an error.
 - Numbers are plain YAML numbers (`25e9`, `-5.0e6`); a quoted `"25e9"` is a string.
   Every number is finite (`.inf` and `.nan` are errors); `1,5` is an error that asks
-  whether a decimal comma was meant.
-- One YAML document per file, UTF-8, at most 4 MiB. Refused, naming the line: an empty
+  whether a decimal comma was meant, also inside `{ }` and `[ ]`, where YAML would read
+  it as two values (`{youngs_modulus: 1,5}` as the value 1 and a key `5`).
+- One YAML document per file, UTF-8, at most 4 MiB; directives (`%YAML 1.2`) before its
+  `---` are part of it. Refused, naming the line: an empty
   file (no key at all), a quote not closed on the line it opens, a second document
   after `---`, content after a `...` document end, YAML tags (`!!str 1.0`), anchors
   and aliases (`&a`, `*a`), maps and lists nested more than 16 levels deep (checked
-  before the YAML is parsed), keys of more than 64 characters, bytes that are not UTF-8 in any string, a list of more than
+  before the YAML is parsed), keys of more than 64 characters, bytes that are not UTF-8
+  in any string, a NUL byte anywhere (raw, or as the escape `"\0"`: a path in `extends`
+  would be cut there), a list of more than
   100000 items (10000 for the lists of the tables below), more than 400000 values in the
   whole file (lines, list items and maps, counted before parsing, so that a huge list
   costs no memory). LF, CR LF and CR line endings
   are all read. Values and file names quoted in messages are cut to 80 characters.
 - The `allowed` ranges bound physical values to what is plausible for rock, fluid and
-  loading, with a wide margin: moduli <= 1e13 Pa (diamond is about 1.2e12 Pa),
+  loading, with a wide margin: moduli <= 1e13 Pa (diamond is about 1.2e12 Pa), and
+  from below Young's modulus >= 1e3 Pa (gelatin), fluid bulk modulus >= 1e5 Pa (a gas
+  at atmospheric pressure), fluid viscosity >= 1e-6 Pa s and density >= 0.01 kg/m^3
+  (below any gas), contact and fixed-point spring factors >= 1 (no softer than the rock);
   stresses and pressures within 1e10 Pa (ten times the strength of the strongest
   rocks), strengths <= 1e13 Pa (a strength that never acts can still be written),
   densities <= 1e5 kg/m^3, body forces within 1e7 N/m^3 (1000 g in rock), spring

@@ -6,6 +6,8 @@
 #include <charconv>
 #include <cctype>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 namespace hfdda::io::schema {
 
@@ -113,7 +115,46 @@ void fail_decimal_comma(const FileReader& r, const YAML::Node& node, const std::
     r.fail(node, key, "decimal comma? write " + clip(*dotted) + " (got '" + clip(node.Scalar()) + "')");
 }
 
+bool is_whole_number(std::string_view text) {
+  if (text.starts_with('+') || text.starts_with('-')) text.remove_prefix(1);
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+/// `b` is written right after `a` and a comma, with no blank between: "1,5" in a flow
+/// collection, which YAML reads as two values.
+bool follows_comma_directly(const YAML::Node& a, const YAML::Node& b) {
+  if (!is_plain_scalar(a) || a.Mark().is_null() || b.Mark().is_null()) return false;
+  return b.Mark().line == a.Mark().line &&
+         b.Mark().column == a.Mark().column + static_cast<int>(a.Scalar().size()) + 1;
+}
+
 }  // namespace
+
+void fail_split_decimal_comma(const FileReader& r, const YAML::Node& map, const YAML::Node& name_node,
+                              const std::string& prefix) {
+  const std::string& digits = name_node.Scalar();
+  if (!is_plain_scalar(name_node) || !is_whole_number(digits) || digits.starts_with('-') || digits.starts_with('+'))
+    return;
+  // Copies, not assignments: assigning a YAML::Node changes the node it refers to.
+  std::optional<std::pair<YAML::Node, YAML::Node>> previous;
+  for (const auto& entry : map) {
+    if (entry.first.is(name_node)) {
+      if (!entry.second.IsNull()) return;  // `5: 3` is an unknown key, not a split number
+      break;
+    }
+    previous.emplace(entry.first, entry.second);
+  }
+  if (!previous) return;
+  const auto& [previous_name, previous_value] = *previous;
+  if (!previous_name.IsScalar() || !is_plain_scalar(previous_value) || !is_whole_number(previous_value.Scalar()) ||
+      !follows_comma_directly(previous_value, name_node))
+    return;
+  const std::string written = previous_value.Scalar() + "," + name_node.Scalar();
+  r.fail(previous_value, child_key(prefix, previous_name.Scalar()),
+         "decimal comma? write " + clip(previous_value.Scalar() + "." + name_node.Scalar()) + " (got '" +
+             clip(written) + "', which a { } map reads as the value " + clip(previous_value.Scalar()) +
+             " and a key '" + clip(name_node.Scalar()) + "')");
+}
 
 double read_number(const FileReader& r, const YAML::Node& node, const std::string& key) {
   const auto value = is_plain_scalar(node) ? parse_double(node.Scalar()) : std::nullopt;
@@ -152,9 +193,14 @@ std::string read_string(const FileReader& r, const YAML::Node& node, const std::
 
 Vec2 read_point(const FileReader& r, const YAML::Node& node, const std::string& key) {
   if (!node.IsSequence() || node.size() != 2) {
-    const std::string got = node.IsSequence()
-                                ? "a list of " + std::to_string(node.size()) + " items"
-                                : describe(node);
+    std::string got = node.IsSequence() ? "a list of " + std::to_string(node.size()) + " items" : describe(node);
+    for (std::size_t i = 0; node.IsSequence() && i + 1 < node.size(); ++i)
+      if (is_whole_number(node[i].Scalar()) && is_plain_scalar(node[i + 1]) &&
+          is_whole_number(node[i + 1].Scalar()) && follows_comma_directly(node[i], node[i + 1])) {
+        got += "; decimal comma? '" + clip(node[i].Scalar() + "," + node[i + 1].Scalar()) +
+               "' is two items in [ ]: write " + clip(node[i].Scalar() + "." + node[i + 1].Scalar());
+        break;
+      }
     r.fail(node, key, "expected a point [x, y], a list of 2 numbers (got " + got + ")");
   }
   return Vec2{read_number(r, node[0], key), read_number(r, node[1], key)};

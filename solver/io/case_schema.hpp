@@ -12,6 +12,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <optional>
@@ -102,6 +103,13 @@ bool read_bool(const FileReader& r, const YAML::Node& node, const std::string& k
 std::string read_string(const FileReader& r, const YAML::Node& node, const std::string& key);
 Vec2 read_point(const FileReader& r, const YAML::Node& node, const std::string& key);
 
+/// `{youngs_modulus: 1,5}`: in a flow map the comma ends the value, so `5` is read as a
+/// key of its own. Called on an unknown key of `map`: refuses it as a decimal comma on
+/// the key before it when the unknown key is digits with no value, written right after
+/// a comma that follows a whole number. Returns when that is not what happened.
+void fail_split_decimal_comma(const FileReader& r, const YAML::Node& map, const YAML::Node& name_node,
+                              const std::string& prefix);
+
 // ---------------------------------------------------------------------------
 // Plausible bounds of physical parameters (docs/case_file.md, `allowed` column). Far
 // beyond any rock, fluid or loading the model is meant for, yet small enough that sums
@@ -109,6 +117,22 @@ Vec2 read_point(const FileReader& r, const YAML::Node& node, const std::string& 
 // from overflow, so a typing slip is refused instead of giving NaN coordinates.
 
 inline constexpr double kMaxModulus = 1e13;          ///< Pa: Young's and bulk moduli (diamond: 1.2e12)
+/// Pa: Young's modulus. Gelatin, the softest solid fractured in laboratory experiments
+/// (dyke and hydraulic-fracture analogues), has 1e3 to 1e4 Pa. The contact springs are
+/// factors of it: at 1e-300 Pa their ALM corrections are 1e-297 N and K is not definite.
+inline constexpr double kMinYoungsModulus = 1e3;
+/// Pa: fluid bulk modulus. A gas at atmospheric pressure has K = p = 1e5 Pa (isothermal),
+/// liquids 1e9 to 1e10 Pa; below, the fluid storage term swamps the mass balance.
+inline constexpr double kMinFluidBulkModulus = 1e5;
+/// Pa s: fluid viscosity, below any gas (hydrogen: 9e-6 Pa s); with no viscosity the
+/// cubic-law conductance is unbounded and the mass-balance Jacobian singular.
+inline constexpr double kMinViscosity = 1e-6;
+/// kg/m^3: fluid density, below any gas at atmospheric pressure (hydrogen: 0.09).
+inline constexpr double kMinFluidDensity = 1e-2;
+/// Contact and fixed-point springs / max E: a spring softer than the rock lets blocks
+/// overlap (or a fixed point drift) by more than their own elastic strain, so the
+/// constraint means nothing; the seed uses 30 to 100.
+inline constexpr double kMinStiffnessFactor = 1;
 inline constexpr double kMaxDensity = 1e5;           ///< kg/m^3 (osmium: 2.3e4)
 inline constexpr double kMaxStress = 1e10;           ///< Pa: stresses and pressures
 /// Pa (and Pa m^0.5 for a toughness): up to a modulus, so "a strength that never acts"
@@ -225,6 +249,13 @@ std::set<std::string> parse_map(FileReader& r, const YAML::Node& node, const std
   if (!node.IsMap())
     r.fail(node, prefix.empty() ? "(document)" : prefix,
            "expected a map of keys (got " + describe(node) + ")");
+  // Before any value is read: the `1` of a split `1,5` may be out of range on its own.
+  for (const auto& entry : node) {
+    const bool known = entry.first.IsScalar() && std::any_of(table.fields.begin(), table.fields.end(), [&](const auto& f) {
+      return f.doc.name == entry.first.Scalar();
+    });
+    if (!known) fail_split_decimal_comma(r, node, entry.first, prefix);
+  }
   std::set<std::string> seen;
   for (const auto& entry : node) {
     const YAML::Node& name_node = entry.first;

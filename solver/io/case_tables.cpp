@@ -105,8 +105,9 @@ const Table<MaterialConfig>& material_table() {
        rect({"box", "m", "", "zone of region 'box'"}, &MaterialConfig::box,
             "overlaps domain.outer", "none"),
        number({"youngs_modulus", "Pa", "Table 3.1: E = 25 GPa", "Young's modulus"},
-              &MaterialConfig::youngs_modulus_Pa, positive_up_to(kMaxModulus),
-              "above any solid (diamond: 1.2e12)"),
+              &MaterialConfig::youngs_modulus_Pa, interval(kMinYoungsModulus, false, kMaxModulus, false),
+              "from gelatin, the softest solid fractured in laboratory experiments (1e3 to 1e4 Pa), "
+              "to above any solid (diamond: 1.2e12)"),
        number({"poissons_ratio", "-", "Table 3.1: nu = 0.25", "Poisson's ratio (plane strain)"},
               &MaterialConfig::poissons_ratio, interval(0, false, 0.5, true)),
        number({"density", "kg/m^3", "Table 3.1: rho_r = 2650 kg/m^3", "rock density"},
@@ -190,15 +191,19 @@ const Table<FractureConfig>& fracture_table() {
       "of `joints`. "
       "`from` and `to` differ. `fluid_filled: true` needs `initially_open: true` and "
       "excludes `pressure`; `initial_width` > 0 and `initial_pressure` > 0 need "
-      "`fluid_filled: true`.",
+      "`fluid_filled: true`. `pressure` and `segment_length` have further rules in the checks across keys.",
       {text({"name", "", "", "label used in outputs"}, &FractureConfig::name),
        required(point({"from", "m", "§3.1: 20 m fracture at the centre", "first end"},
                       &FractureConfig::from, "inside domain.outer")),
        required(point({"to", "m", "", "second end"}, &FractureConfig::to,
                       "inside domain.outer")),
        number({"segment_length", "m", "§3.1: joints 1 m apart",
-               "Delaunay constraint piece length; 0: the mesh size"},
-              &FractureConfig::segment_length_m, at_least(0), kWithinDomain),
+               "Delaunay mesh: the fracture is a constraint split into equal pieces no longer than this, its "
+               "joints (the refinement may split a piece further); 0: pieces of the mesh size. A structured mesh "
+               "makes a fracture of its cell edges and takes no segment_length"},
+              &FractureConfig::segment_length_m, at_least(0),
+              std::string(kWithinDomain) + "; > 0 only with mesh.type: delaunay, then >= 0.01 of the mesh size it "
+              "meets (checks across keys)"),
        boolean({"initially_open", "", "§3.2: joints at the injection point start open",
                 "bonds on the line are broken at t = 0"},
                &FractureConfig::initially_open),
@@ -222,7 +227,9 @@ const Table<FractureConfig>& fracture_table() {
                        &FractureConfig::friction_angle_deg, interval(0, false, 90, true),
                        "joints.friction_angle"),
        optional_number({"pressure", "Pa", "§3.1: 9.81 MPa",
-                        "fluid pressure prescribed on its joints"},
+                        "fluid pressure prescribed on the faces of its open joints: from t = 0 with "
+                        "initially_open: true; without it only on joints that break open during the run, so "
+                        "they must be breakable and some fracture initially open"},
                        &FractureConfig::pressure_Pa, zero_to(kMaxStress), "none"),
        boolean({"fluid_filled", "",
                 "§3.2: the two fractures on either side of the injection point were "
@@ -251,13 +258,17 @@ const Table<FluidConfig>& fluid_table() {
       "(p - p0) / K_f) (seed eq. 2.6); cubic law with viscosity mu (eq. 2.2).",
       {number({"density", "kg/m^3", "Table 3.1: rho_f = 1000 kg/m^3",
                "reference density rho0, at the reference pressure"},
-              &FluidConfig::density_kg_m3, positive_up_to(kMaxDensity)),
+              &FluidConfig::density_kg_m3, interval(kMinFluidDensity, false, kMaxDensity, false),
+              "from below any gas at atmospheric pressure (hydrogen: 0.09)"),
        number({"bulk_modulus", "Pa", "Table 3.1: K_f = 2.2 GPa",
                "bulk modulus K_f; compressibility c_f = 1 / K_f"},
-              &FluidConfig::bulk_modulus_Pa, positive_up_to(kMaxModulus)),
+              &FluidConfig::bulk_modulus_Pa, interval(kMinFluidBulkModulus, false, kMaxModulus, false),
+              "from a gas at atmospheric pressure (isothermal K = p = 1e5 Pa; liquids: 1e9 to 1e10), "
+              "below which fluid storage swamps the mass balance"),
        number({"viscosity", "Pa s", "Table 3.1: mu = 1 mPa s; Table 5.3: 20 mPa s",
                "dynamic viscosity mu"},
-              &FluidConfig::viscosity_Pa_s, positive_up_to(1e6)),
+              &FluidConfig::viscosity_Pa_s, interval(kMinViscosity, false, 1e6, false),
+              "from below any gas (hydrogen: 9e-6 Pa s); the cubic-law conductance grows as 1 / mu"),
        number({"reference_pressure", "Pa", "eq. 2.6: p0",
                "pressure p0 at which the density is rho0"},
               &FluidConfig::reference_pressure_Pa, magnitude_up_to(kMaxStress)),
@@ -316,7 +327,9 @@ const Table<FarFieldConfig>& far_field_table() {
        number({"sxy", "Pa", "", "shear stress"}, &FarFieldConfig::sxy_Pa, magnitude_up_to(kMaxStress),
               "10 x the strength of the strongest rock"),
        choice_list({"sides", "", "§3.1: upper and lower boundaries",
-                    "sides of domain.outer loaded by the far-field stress"},
+                    "sides of domain.outer loaded by the far-field stress; the traction sigma . n puts sxx on "
+                    "left and right, syy on bottom and top, so a non-zero sxx needs left or right, a non-zero "
+                    "syy bottom or top, and a non-zero stress some side"},
                    &FarFieldConfig::sides, {"left", "right", "bottom", "top"}),
        boolean({"in_situ", "", "",
                 "the rock starts stressed and in equilibrium (block stresses, joint contact "
@@ -348,17 +361,23 @@ const Table<ContactConfig>& contact_table() {
                                      {"penalty", ContactMethod::penalty}}),
        number({"normal_stiffness", "-", "Table 3.1: k_n = 100 E; Table 5.1: 30 E",
                "normal spring k_n / max E"},
-              &ContactConfig::normal_stiffness_factor, positive_up_to(kMaxStiffnessFactor),
-              "the seed uses 30 to 100; beyond 1e6 the stiffness matrix loses all digits"),
+              &ContactConfig::normal_stiffness_factor,
+              interval(kMinStiffnessFactor, false, kMaxStiffnessFactor, false),
+              "the seed uses 30 to 100; a spring softer than the rock (below 1) lets blocks overlap "
+              "by more than their own elastic strain; beyond 1e6 the stiffness matrix loses all digits"),
        number({"shear_stiffness", "-", "Table 3.1: k_s = 100 E; Table 5.1: 30 E",
                "shear spring k_s / max E"},
-              &ContactConfig::shear_stiffness_factor, positive_up_to(kMaxStiffnessFactor)),
+              &ContactConfig::shear_stiffness_factor,
+              interval(kMinStiffnessFactor, false, kMaxStiffnessFactor, false),
+              "as normal_stiffness: below 1 the spring is softer than the rock"),
        number({"vertex_vertex_activation", "m", "§2.3 item v (cited in §3.1)",
                "tolerance for applying vertex-vertex contacts"},
               &ContactConfig::vertex_vertex_activation_m, at_least(0), kWithinDomain),
        number({"fixed_point_stiffness", "-", "§3.3: corners fixed",
                "fixed-point spring / max E"},
-              &ContactConfig::fixed_point_stiffness_factor, positive_up_to(kMaxStiffnessFactor))}};
+              &ContactConfig::fixed_point_stiffness_factor,
+              interval(kMinStiffnessFactor, false, kMaxStiffnessFactor, false),
+              "below 1 the spring is softer than the rock it holds")}};
   return table;
 }
 

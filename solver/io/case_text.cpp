@@ -80,10 +80,17 @@ class TextScanner {
   void scan_line(std::string_view line, int line_no) {
     std::size_t indent = 0;
     while (indent < line.size() && line[indent] == ' ') ++indent;
+    if (const auto nul = line.find('\0'); nul != std::string_view::npos)
+      fail(line_no, "(syntax)",
+           "a NUL byte (0x00) at character " + std::to_string(nul + 1) +
+               " of this line; a case file is text, and no key or value may hold one");
     if (block_scalar_indent_ >= 0) {  // text of a `|` or `>` value
       if (indent == line.size() || static_cast<int>(indent) > block_scalar_indent_) return;
       block_scalar_indent_ = -1;
     }
+    // A directive (`%YAML 1.2`, `%TAG`) before the first `---` belongs to the one
+    // document that follows it; YAML allows directives nowhere else.
+    if (!content_seen_ && flow_depth_ == 0 && line.starts_with('%')) return;
     if (flow_depth_ == 0 && (is_marker(line, "---") || is_marker(line, "..."))) {
       if (is_marker(line, "---") && content_seen_)
         fail(line_no, "(document)",
@@ -206,6 +213,10 @@ class TreeChecker {
         if (!is_valid_utf8(node.Scalar()))
           fail(node, key, "is not valid UTF-8 text (byte " + first_bad_byte(node.Scalar()) +
                               "); save the case file as UTF-8");
+        // A "\0" escape: a path would be cut there, a name would end early in the outputs.
+        if (const auto nul = node.Scalar().find('\0'); nul != std::string::npos)
+          fail(node, key, "holds a NUL byte (\\0) at character " + std::to_string(nul + 1) +
+                              "; no value of a case file may hold one (a file path would be cut there)");
         break;
       case YAML::NodeType::Sequence:
         if (node.size() > kMaxListItems)

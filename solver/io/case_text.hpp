@@ -1,8 +1,9 @@
 #pragma once
 // Checks on the text of a case file made before and right after YAML parsing, for YAML
 // that is valid but would mean something other than what was written (a quote left
-// open swallowing the rest of the file, a second document, `...` in the middle, tags),
-// and for input too large or too deeply nested to parse safely.
+// open swallowing the rest of the file, a second document, `...` in the middle, tags,
+// NUL bytes), and for input too large or too deeply nested to parse safely. Directives
+// (`%YAML 1.2`) before the first `---` belong to the one document.
 
 #include <yaml-cpp/yaml.h>
 

@@ -120,6 +120,7 @@ void check_load_ramp(const CaseConfig& c, const MergedChecker& m) {
   const LoadRampConfig& ramp = *c.load_ramp;
   if (ramp.sxx == 0 && ramp.syy == 0 && ramp.sxy == 0)
     m.fail("load_ramp.syy", "the stress pattern sxx, sxy, syy is zero: the ramp would load nothing");
+  check_stress_sides(m, "load_ramp", ramp.sxx, ramp.syy, ramp.sxy, ramp.sides, "the ramp's stress pattern");
   if (ramp.history.empty()) {
     if (!ramp.increment_Pa) m.fail("load_ramp.increment", "is required without a history");
     if (!ramp.maximum_Pa) m.fail("load_ramp.maximum", "is required without a history");

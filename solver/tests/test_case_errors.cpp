@@ -66,9 +66,9 @@ TEST(CaseFileErrors, EmptyValueIsReportedAtItsKey) {
 
 TEST(CaseFileErrors, YoungsModulusMustBePositive) {
   expect_text_error("materials:\n  - {youngs_modulus: 0}\n", 2, "materials[0].youngs_modulus",
-                    "must be in (0, 1e13] (got 0)");
+                    "must be in [1000, 1e13] (got 0)");
   expect_text_error("materials:\n  - name: a\n  - name: b\n    youngs_modulus: -1\n", 4,
-                    "materials[1].youngs_modulus", "must be in (0, 1e13] (got -1)");
+                    "materials[1].youngs_modulus", "must be in [1000, 1e13] (got -1)");
 }
 
 TEST(CaseFileErrors, PoissonsRatioInHalfOpenInterval) {
@@ -88,7 +88,7 @@ TEST(CaseFileErrors, OtherRanges) {
   expect_text_error("mesh: {max_area_outer: 0}\n", 1, "mesh.max_area_outer", "> 0");
   expect_text_error("joints: {friction_angle: 90}\n", 1, "joints.friction_angle", "[0, 90)");
   expect_text_error("joints: {tensile_strength: -1}\n", 1, "joints.tensile_strength", "in [0, 1e13]");
-  expect_text_error("contact: {normal_stiffness: 0}\n", 1, "contact.normal_stiffness", "in (0, 1e6]");
+  expect_text_error("contact: {normal_stiffness: 0}\n", 1, "contact.normal_stiffness", "in [1, 1e6]");
   expect_text_error("contact: {vertex_vertex_activation: -1e-6}\n", 1,
                     "contact.vertex_vertex_activation", ">= 0");
   expect_text_error("numerics: {alm_tolerance: 0}\n", 1, "numerics.alm_tolerance", "in (0, 1]");

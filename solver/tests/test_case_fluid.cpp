@@ -264,9 +264,9 @@ TEST(CaseFileFluid, InjectionItems) {
 }
 
 TEST(CaseFileFluid, FluidAndNumericsRanges) {
-  expect_text_error("fluid:\n  density: 0\n", 2, "fluid.density", "must be in (0, 1e5] (got 0)");
-  expect_text_error("fluid:\n  bulk_modulus: -1\n", 2, "fluid.bulk_modulus", "in (0, 1e13]");
-  expect_text_error("fluid:\n  viscosity: 0\n", 2, "fluid.viscosity", "in (0, 1e6]");
+  expect_text_error("fluid:\n  density: 0\n", 2, "fluid.density", "must be in [0.01, 1e5] (got 0)");
+  expect_text_error("fluid:\n  bulk_modulus: -1\n", 2, "fluid.bulk_modulus", "in [1e5, 1e13]");
+  expect_text_error("fluid:\n  viscosity: 0\n", 2, "fluid.viscosity", "in [1e-6, 1e6]");
   expect_text_error("fluid:\n  leak_off_coefficient: -2e-5\n", 2, "fluid.leak_off_coefficient",
                     "must be in [0, 1] (got -2e-5)");
   expect_text_error("fluid:\n  reference_pressure: abc\n", 2, "fluid.reference_pressure",
@@ -300,7 +300,7 @@ TEST(CaseFileFluid, ErrorInAnExtendedFileNamesThatFile) {
   // The child's fluid override is bad: the error names the child, not the base.
   const std::string label = kCases + "fluid_virtual.yaml";
   expect_error(error_of_text("extends: fluid_base.yaml\nfluid:\n  viscosity: -1\n", label),
-               label, 3, "fluid.viscosity", "in (0, 1e6]");
+               label, 3, "fluid.viscosity", "in [1e-6, 1e6]");
 }
 
 }  // namespace

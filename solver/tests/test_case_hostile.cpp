@@ -46,6 +46,22 @@ TEST(CaseFileHostile, SecondDocumentIsRefused) {
   EXPECT_EQ(load("---\ntitle: a\n").title, "a");  // a leading marker is fine
 }
 
+TEST(CaseFileHostile, YamlDirectiveStartsTheOneDocument) {
+  EXPECT_EQ(load("%YAML 1.2\n---\ntitle: a\n").title, "a");
+  EXPECT_EQ(load("# a comment first\n%YAML 1.1\n---\ntitle: b\n").title, "b");
+  expect_text_error("%YAML 1.2\n---\ntitle: a\n---\ntitle: b\n", 4, "(document)", "second YAML document");
+  expect_text_error("%YAML 1.2\n---\n", 0, "(document)", "empty case file");
+}
+
+TEST(CaseFileHostile, NulBytesAreRefused) {
+  // A "\0" escape cut the extends path at the NUL: "base.yaml\0junk" read base.yaml.
+  expect_text_error("title: x\nextends: \"base.yaml\\0junk\"\n", 2, "extends",
+                    "holds a NUL byte (\\0) at character 10");
+  expect_text_error("title: \"a\\0b\"\n", 1, "title", "NUL byte");
+  expect_text_error(std::string("title: x\nextends: base.yaml\0junk\n", 33), 2, "(syntax)",
+                    "a NUL byte (0x00) at character 19");
+}
+
 TEST(CaseFileHostile, DocumentEndInTheMiddleIsRefused) {
   expect_text_error("title: a\n...\ntime: {dt: 0.5}\n", 2, "(document)", "'...' ends the YAML document");
   EXPECT_EQ(load("title: a\n...\n# trailing comment\n").title, "a");
@@ -107,6 +123,16 @@ TEST(CaseFileHostile, DecimalCommaIsNamed) {
   expect_text_error("time:\n  dt: 1,5\n", 2, "time.dt", "decimal comma? write 1.5 (got '1,5')");
   expect_text_error("numerics:\n  max_step_cuts: 3,0\n", 2, "numerics.max_step_cuts", "decimal comma?");
   expect_text_error("time:\n  dt: 1,5,2\n", 2, "time.dt", "expected a finite number (got '1,5,2')");
+  // In { } and [ ] YAML splits 1,5 in two: the value 1 (out of range here) and a key 5.
+  expect_text_error("materials:\n  - {youngs_modulus: 1,5}\n", 2, "materials[0].youngs_modulus",
+                    "decimal comma? write 1.5 (got '1,5', which a { } map reads as the value 1 and a key '5')");
+  expect_text_error("far_field: {sides: [top], syy: -1,5}\n", 1, "far_field.syy", "decimal comma? write -1.5");
+  expect_text_error("point_loads:\n  - {at: [0, 0], force: [1,5, 2]}\n", 2, "point_loads[0].force",
+                    "decimal comma? '1,5' is two items in [ ]: write 1.5");
+  // Not a split number: a blank after the comma, or a key that has a value.
+  expect_text_error("materials:\n  - {density: 1, 5}\n", 2, "materials[0].5", "unknown key");
+  expect_text_error("materials:\n  - {density: 1,5: 2}\n", 2, "materials[0].5", "unknown key");
+  EXPECT_EQ(load("fixed_points: [[0,0], [1,1]]\n").fixed_points.size(), 2u);
 }
 
 TEST(CaseFileHostile, InvalidUtf8IsRefusedUpFront) {
@@ -130,17 +156,91 @@ TEST(CaseFileHostile, EchoedValuesAreCut) {
 
 TEST(CaseFileHostile, PhysicalParametersHavePlausibleBounds) {
   expect_text_error("materials:\n  - {youngs_modulus: 1e308}\n", 2, "materials[0].youngs_modulus",
-                    "must be in (0, 1e13] (got 1e308)");
+                    "must be in [1000, 1e13] (got 1e308)");
   expect_text_error("contact: {normal_stiffness: 1e308}\n", 1, "contact.normal_stiffness",
-                    "must be in (0, 1e6]");
+                    "must be in [1, 1e6]");
   expect_text_error("far_field: {syy: -1e308}\n", 1, "far_field.syy", "must be in [-1e10, 1e10]");
   expect_text_error("far_field: {sxx: 1e200}\n", 1, "far_field.sxx", "must be in [-1e10, 1e10]");
   expect_text_error("fractures:\n  - {from: [0, 0], to: [1, 0], pressure: 1e200}\n", 2,
                     "fractures[0].pressure", "must be in [0, 1e10]");
   expect_text_error("body_force: [0, 1e300]\n", 1, "body_force[1]", "must be in [-1e7, 1e7]");
-  expect_text_error("fluid: {bulk_modulus: 1e300}\n", 1, "fluid.bulk_modulus", "(0, 1e13]");
+  expect_text_error("fluid: {bulk_modulus: 1e300}\n", 1, "fluid.bulk_modulus", "[1e5, 1e13]");
   expect_text_error("domain:\n  outer: {xmin: -1e300, xmax: 1, ymin: 0, ymax: 1}\n", 2,
                     "domain.outer.xmin", "[-1e7, 1e7]");
+}
+
+TEST(CaseFileHostile, ModuliHavePlausibleLowerBounds) {
+  // Each value below stopped a run of fuzz/corpus/small_fluid.yaml (K not positive
+  // definite, singular mass-balance Jacobian) or crashed it (shear stiffness 1e-30).
+  expect_text_error("materials:\n  - {youngs_modulus: 1e-300}\n", 2, "materials[0].youngs_modulus",
+                    "must be in [1000, 1e13] (got 1e-300)");
+  expect_text_error("contact: {normal_stiffness: 1e-300}\n", 1, "contact.normal_stiffness", "[1, 1e6]");
+  expect_text_error("contact: {shear_stiffness: 1e-30}\n", 1, "contact.shear_stiffness", "[1, 1e6]");
+  expect_text_error("contact: {fixed_point_stiffness: 0.5}\n", 1, "contact.fixed_point_stiffness", "[1, 1e6]");
+  expect_text_error("fluid: {bulk_modulus: 1e-300}\n", 1, "fluid.bulk_modulus", "[1e5, 1e13]");
+  expect_text_error("fluid: {viscosity: 1e-300}\n", 1, "fluid.viscosity", "[1e-6, 1e6]");
+  expect_text_error("fluid: {density: 1e-300}\n", 1, "fluid.density", "[0.01, 1e5]");
+  // The bounds themselves are allowed.
+  const CaseConfig c = load(
+      "materials:\n  - {youngs_modulus: 1e3}\ncontact: {normal_stiffness: 1, shear_stiffness: 1, "
+      "fixed_point_stiffness: 1}\nfluid: {bulk_modulus: 1e5, viscosity: 1e-6, density: 0.01}\n"
+      "fractures:\n  - {from: [0, 0], to: [1, 0], initially_open: true, fluid_filled: true}\n");
+  EXPECT_EQ(c.materials[0].youngs_modulus_Pa, 1e3);
+  EXPECT_EQ(c.fluid->bulk_modulus_Pa, 1e5);
+}
+
+// --- Keys that would be read and then do nothing ----------------------------------
+
+TEST(CaseFileHostile, FarFieldStressNeedsASide) {
+  expect_text_error("title: x\nfar_field: {syy: -5e6, sides: []}\n", 2, "far_field.sides",
+                    "is empty, so the far-field stress (sxx 0, syy -5e6, sxy 0) would act on no side");
+  expect_text_error("far_field:\n  sxx: -5e6\n", 2, "far_field.sxx",
+                    "acts only on the left and right sides (the traction is sigma . n), but far_field.sides is "
+                    "[top, bottom] (the default), with neither");
+  expect_text_error("far_field:\n  sides: [left]\n  syy: -5e6\n", 3, "far_field.syy",
+                    "far_field.sides is [left], with neither");
+  expect_text_error("load_ramp: {syy: 1, increment: 1e4, maximum: 1e6, sides: []}\n", 1, "load_ramp.sides",
+                    "is empty, so the ramp's stress pattern");
+  // What does act: shear on any side, in situ on all four, no stress on none.
+  EXPECT_NO_THROW(load("far_field: {sxy: 1e6, sides: [top]}\n"));
+  EXPECT_NO_THROW(load("far_field: {sxx: -5e6, syy: -5e6, in_situ: true, sides: []}\n"));
+  EXPECT_NO_THROW(load("far_field: {sides: []}\n"));
+}
+
+TEST(CaseFileHostile, PressureNeedsJointsThatOpen) {
+  expect_text_error("fractures:\n  - {from: [-2, 0], to: [2, 0], pressure: 1e6}\n", 2, "fractures[0].pressure",
+                    "acts only on open joints: on a fracture without initially_open: true, only on joints that "
+                    "break open during the run; a joint breaks only next to an open one, and no fracture is "
+                    "initially open");
+  expect_text_error("joints: {breakable: false}\nfractures:\n  - {from: [-2, 0], to: [0, 0], initially_open: true}\n"
+                    "  - {from: [0, 0], to: [2, 0], pressure: 1e6}\n",
+                    4, "fractures[1].pressure", "(joints.breakable: false)");
+  // An initially open fracture, or a breakable path from one (its joints take the
+  // pressure as they break: the bonds break from the open crack's tip).
+  EXPECT_NO_THROW(load("fractures:\n  - {from: [-2, 0], to: [2, 0], initially_open: true, pressure: 1e6}\n"));
+  EXPECT_NO_THROW(load("fractures:\n  - {from: [-2, 0], to: [0, 0], initially_open: true, pressure: 1e6}\n"
+                       "  - {from: [0, 0], to: [2, 0], pressure: 1e6}\n"));
+}
+
+TEST(CaseFileHostile, SegmentLengthIsOneTheMesherHonours) {
+  expect_text_error("fractures:\n  - {from: [-2, 0], to: [2, 0], segment_length: 0.001}\n", 2,
+                    "fractures[0].segment_length", "is only used by a Delaunay mesh (mesh.type: delaunay)");
+  const std::string delaunay =
+      "domain:\n  outer: {xmin: -8, xmax: 8, ymin: -8, ymax: 8}\n  inner: {xmin: -4, xmax: 4, ymin: -2, ymax: 2}\n"
+      "mesh: {type: delaunay, max_area_inner: 0.25, max_area_outer: 4}\nfractures:\n";
+  expect_text_error(delaunay + "  - {from: [-2, 0], to: [2, 0], segment_length: 0.004}\n", 6,
+                    "fractures[0].segment_length",
+                    "must be at least 0.01 of the mesh size it meets, sqrt(mesh.max_area_inner) = 0.5 m, i.e. >= "
+                    "0.005 m (got 0.004)");
+  EXPECT_NO_THROW(load(delaunay + "  - {from: [-2, 0], to: [2, 0], segment_length: 0.005}\n"));
+  // Out of the inner rectangle the pieces meet the coarser triangles.
+  expect_text_error(delaunay + "  - {from: [-2, 0], to: [6, 0], segment_length: 0.01}\n", 6,
+                    "fractures[0].segment_length", "sqrt(mesh.max_area_outer) = 2 m, i.e. >= 0.02 m");
+  // Pieces count towards the cell limit.
+  expect_text_error(
+      "domain: {outer: {xmin: -5e6, xmax: 5e6, ymin: -1, ymax: 1}}\nmesh: {type: delaunay, max_area_inner: 1e4}\n"
+      "fractures:\n  - {from: [-5e6, 0], to: [5e6, 0], segment_length: 1}\n",
+      4, "fractures[0].segment_length", "of them along the fracture pieces of segment_length); at most 1e7");
 }
 
 TEST(CaseFileHostile, EveryNumberIsFinite) {
