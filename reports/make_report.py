@@ -2,7 +2,8 @@
 """Write the validation report (VALIDATION.md + figures) from verification results.
 
 Usage:
-    /usr/bin/python3 reports/make_report.py --results build/verification-results --out reports
+    /usr/bin/python3 reports/make_report.py --results build/verification-results --out reports \
+        [--junit FILE] [--readme README.md]
 
 Every verification driver writes RESULTS/<dir>/result.json (schema in
 verification/README.md). For each result, in sorted order of <dir>, this script
@@ -10,15 +11,24 @@ verification/README.md). For each result, in sorted order of <dir>, this script
   1. runs verification/<case>/plot.py RESULTS/<dir> with Debian's python, if that
      script exists (a failing plot is reported, not fatal);
   2. copies the figures named in result.json to OUT/figures/<dir>_<name>.png;
-  3. writes OUT/VALIDATION.md: header (UTC time, git commit, dirty tree), summary
-     table, then per case its checks, metrics, notes and figures.
+  3. writes OUT/VALIDATION.md: header (UTC time, git commit, whether the working tree
+     was clean), summary table, then per case its checks, metrics, notes and figures.
+     Gating checks (a miss fails the runner and so CTest) are counted apart from the
+     checks that are only reported.
 
 With --junit (ctest --output-junit), the report also lists every CTest test that did
 not pass, so a driver that crashed before writing result.json is still visible.
 
+With --readme, the text between the README's markers
+    <!-- verified-summary:begin --> and <!-- verified-summary:end -->
+is rewritten from the full-tier results: one line per case (title, seed section,
+gating and reported-only counts, the first miss). The README is left alone when the
+results are partial: a case of verification/ (a folder with study.yaml) without a
+full-tier result, e.g. after `scripts/verify --quick` or `-R griffith`.
+
 Exit status: 0 when a report was written, 1 when RESULTS holds no result.json
-(a report saying so is still written). Case failures do not change the exit status:
-scripts/verify returns ctest's.
+(a report saying so is still written) or the README's markers are missing or
+malformed. Case failures do not change the exit status: scripts/verify returns ctest's.
 
 Needs only the Python standard library (plot.py scripts use matplotlib + numpy).
 """
@@ -30,6 +40,7 @@ import datetime as _dt
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -41,6 +52,9 @@ DEFAULT_PYTHON = "/usr/bin/python3" if Path("/usr/bin/python3").exists() else sy
 PLOT_TIMEOUT_S = 900
 MARK_OK = "✅"
 MARK_BAD = "❌"
+MARK_WARN = "⚠"
+README_BEGIN = "<!-- verified-summary:begin -->"
+README_END = "<!-- verified-summary:end -->"
 COMPARATORS = {
     "<=": lambda v, t: v <= t,
     "<": lambda v, t: v < t,
@@ -124,7 +138,7 @@ def recompute_passed(check: dict):
 
 
 def evaluate_check(check: dict) -> dict:
-    """Outcome, expectation and whether they match; flags driver inconsistencies."""
+    """Outcome, expectation, gating and whether they match; flags driver inconsistencies."""
     expected = str(check.get("expected", "pass")).lower()
     recomputed = recompute_passed(check)
     passed = check.get("passed")
@@ -141,12 +155,17 @@ def evaluate_check(check: dict) -> dict:
     matches = (passed and expected == "pass") or (not passed and expected == "fail")
     if warnings:
         matches = False
+    # The harness always writes `gating`; without it the check is counted as gating,
+    # so a result of an older or foreign driver cannot hide a miss from the gating count.
+    gating = check.get("gating")
+    gating_recorded = isinstance(gating, bool)
+    gating = gating if gating_recorded else True
     if passed:
         outcome = "pass" if expected == "pass" else "unexpected pass"
     else:
         outcome = "expected failure (seed)" if expected == "fail" else "**FAIL**"
-    return {"passed": passed, "expected": expected, "matches": matches,
-            "outcome": outcome, "warnings": warnings}
+    return {"passed": passed, "expected": expected, "matches": matches, "gating": gating,
+            "gating_recorded": gating_recorded, "outcome": outcome, "warnings": warnings}
 
 
 def threshold_text(check: dict) -> str:
@@ -199,52 +218,201 @@ def load_case(result_path: Path) -> dict:
 
 
 def summarise(case: dict) -> dict:
+    """Per case: gating and reported-only checks counted apart, and the case's state.
+
+    `ok` is the runner's verdict recomputed: every gating check matches its expectation
+    (what CTest sees). `all_match` also needs every reported-only check to match (what
+    the driver writes as `status`)."""
     evals = [evaluate_check(c if isinstance(c, dict) else {}) for c in case["checks"]]
-    matched = sum(e["matches"] for e in evals)
-    computed = "pass" if evals and matched == len(evals) and "error" not in case else "fail"
+    gating = [e for e in evals if e["gating"]]
+    reported = [e for e in evals if not e["gating"]]
+    counts = {
+        "gating_total": len(gating), "gating_matched": sum(e["matches"] for e in gating),
+        "gating_expected_fail": sum(e["expected"] == "fail" for e in gating),
+        "reported_total": len(reported), "reported_matched": sum(e["matches"] for e in reported),
+        "reported_expected_fail": sum(e["expected"] == "fail" for e in reported),
+    }
+    all_match = bool(evals) and all(e["matches"] for e in evals) and "error" not in case
     driver = str(case.get("status", "")).lower()
+    driver_note = ""
+    if driver and "error" not in case and evals and driver != ("pass" if all_match else "fail"):
+        driver_note = f"driver says {driver}"
     if "error" in case:
-        status = "error"
+        state = "error"
     elif not evals:
-        status = "fail (no checks)"
-    elif driver and driver != computed:
-        status = f"{computed} (driver says {driver})"
+        state = "no checks"
+    elif counts["gating_matched"] < counts["gating_total"]:
+        state = "gating miss"
+    elif counts["reported_matched"] < counts["reported_total"]:
+        state = "reported-only miss"
     else:
-        status = computed
-    return {"evals": evals, "matched": matched, "total": len(evals), "status": status,
-            "ok": status == "pass"}
+        state = "pass"
+    ok = state in ("pass", "reported-only miss") and not driver_note
+    return {"evals": evals, "matched": sum(e["matches"] for e in evals), "total": len(evals),
+            "state": state, "ok": ok, "all_match": all_match, "driver_note": driver_note, **counts}
+
+
+def expected_fail_text(n: int) -> str:
+    return f"{n} expected failure{'' if n == 1 else 's'}"
+
+
+def gating_text(summ: dict, marks: bool = True) -> str:
+    """Summary cell for the gating checks, e.g. '✅ 12/12 as expected (2 expected failures)'."""
+    if summ["state"] == "error":
+        return f"{MARK_BAD} **error**" if marks else "error"
+    if summ["state"] == "no checks":
+        return f"{MARK_BAD} **no checks**" if marks else "no checks"
+    n, m = summ["gating_total"], summ["gating_matched"]
+    if n == 0:
+        text = "none (nothing gates)"
+    else:
+        text = f"{m}/{n} as expected"
+        if summ["gating_expected_fail"]:
+            text += f" ({expected_fail_text(summ['gating_expected_fail'])})"
+    if summ["driver_note"]:
+        text += f"; {summ['driver_note']}"
+    if not marks:
+        return text
+    return f"{MARK_OK} {text}" if summ["ok"] else f"{MARK_BAD} **{text}**"
+
+
+def reported_text(summ: dict, marks: bool = True) -> str:
+    """Summary cell for the checks that are only reported, e.g. '⚠ 3/5 as expected'."""
+    n, m = summ["reported_total"], summ["reported_matched"]
+    if n == 0:
+        return "none"
+    text = f"{m}/{n} as expected"
+    if summ["reported_expected_fail"]:
+        text += f" ({expected_fail_text(summ['reported_expected_fail'])})"
+    if not marks:
+        return text
+    return f"{MARK_OK if m == n else MARK_WARN} {text}"
 
 
 # --------------------------------------------------------------------------- git
-def git(source_dir: Path, *args: str):
+class GitError(Exception):
+    """git is missing, or a git command failed (the message says which)."""
+
+
+def git(source_dir: Path, *args: str) -> str:
+    """stdout of `git -C source_dir ARGS`; raises GitError."""
     try:
         p = subprocess.run(["git", "-C", str(source_dir), *args], capture_output=True, text=True, timeout=60)
-    except (OSError, subprocess.TimeoutExpired):
-        return None
-    return p.stdout if p.returncode == 0 else None
+    except FileNotFoundError:
+        raise GitError("git is not installed") from None
+    except (OSError, subprocess.TimeoutExpired) as e:
+        raise GitError(f"git could not be run ({e})") from None
+    if p.returncode != 0:
+        first = (p.stderr.strip().splitlines() or [f"exit status {p.returncode}"])[0]
+        raise GitError(f"git {args[0]}: {first}")
+    return p.stdout
 
 
-def git_state(source_dir: Path, generated: list[Path]) -> tuple[str, str]:
-    """(short commit, dirty description); generated report files do not count as dirty."""
-    commit = git(source_dir, "rev-parse", "--short", "HEAD")
-    if commit is None:
-        return "unknown", "unknown (not a git repository)"
-    top = Path((git(source_dir, "rev-parse", "--show-toplevel") or str(source_dir)).strip()).resolve()
-    ignore = []
-    for g in generated:
+def is_build_dir(path: str) -> bool:
+    top = path.split("/", 1)[0]
+    return top == "build" or top.startswith("build-")
+
+
+def split_readme(text: str, name: str = "README.md"):
+    """(before, generated, after) around the summary markers; raises ValueError naming the
+    line and the rule broken when they are missing, repeated or out of order."""
+    lines = text.splitlines(keepends=True)
+    begins = [i for i, l in enumerate(lines) if l.strip() == README_BEGIN]
+    ends = [i for i, l in enumerate(lines) if l.strip() == README_END]
+    if len(begins) != 1 or len(ends) != 1:
+        where = begins[1:] + ends[1:]
+        at = f":{where[0] + 1}" if where else ""
+        raise ValueError(f"{name}{at}: marker lines '{README_BEGIN}' and '{README_END}' must each appear "
+                         f"exactly once, on lines of their own (found {len(begins)} and {len(ends)})")
+    b, e = begins[0], ends[0]
+    if e < b:
+        raise ValueError(f"{name}:{e + 1}: '{README_END}' comes before '{README_BEGIN}' (line {b + 1})")
+    return "".join(lines[:b + 1]), "".join(lines[b + 1:e]), "".join(lines[e:])
+
+
+def outside_generated(text: str) -> str:
+    """The README without its generated section (the whole text if the markers are not usable)."""
+    try:
+        before, _, after = split_readme(text)
+    except ValueError:
+        return text
+    return before + after
+
+
+class Provenance:
+    """Commit and working-tree state of the source the report was made from."""
+
+    def __init__(self, commit=None, changed=None, problem: str = ""):
+        self.commit = commit            # short hash, or None when git could not tell
+        self.changed = changed or []    # uncommitted paths that count
+        self.problem = problem          # why commit/state are unknown
+
+    @property
+    def clean(self):
+        return None if self.commit is None else not self.changed
+
+    def commit_line(self) -> str:
+        if self.commit is None:
+            return f"unknown: {self.problem}; whether the working tree was clean is unknown"
+        if not self.changed:
+            return (f"`{self.commit}`; working tree clean (the report's own files and build "
+                    "directories not counted)")
+        shown = ", ".join(f"`{c}`" for c in self.changed[:5]) + (", ..." if len(self.changed) > 5 else "")
+        n = len(self.changed)
+        return f"`{self.commit}`; working tree **not clean**: {n} uncommitted path{'' if n == 1 else 's'} ({shown})"
+
+    def short(self) -> str:
+        """For the README: 'commit `abc1234`', with what is known about the tree."""
+        if self.commit is None:
+            return "an unknown commit (git could not tell; see the report's header)"
+        return f"commit `{self.commit}`" + (" with uncommitted changes" if self.changed else "")
+
+
+def git_state(source_dir: Path, generated: list[Path], readme: Path | None = None) -> Provenance:
+    """Commit and uncommitted paths; the generated report files, build directories and a
+    README that differs from HEAD only inside its generated section do not count."""
+    try:
+        commit = git(source_dir, "rev-parse", "--short", "HEAD").strip()
+        top = Path(git(source_dir, "rev-parse", "--show-toplevel").strip()).resolve()
+        status = git(source_dir, "status", "--porcelain", "-z", "--untracked-files=all")
+    except GitError as e:
+        return Provenance(problem=str(e))
+
+    def rel(path: Path):
         try:
-            ignore.append(g.resolve().relative_to(top).as_posix())
+            return path.resolve().relative_to(top).as_posix()
         except ValueError:
-            pass
-    status = git(source_dir, "status", "--porcelain", "--untracked-files=all") or ""
+            return None
+
+    ignore = [r for r in (rel(g) for g in generated) if r]
+    readme_rel = rel(readme) if readme is not None else None
     changed = []
-    for line in status.splitlines():
-        path = line[3:].split(" -> ")[-1].strip('"')
-        if any(path == ig or path.startswith(ig.rstrip("/") + "/") for ig in ignore):
+    entries = status.split("\0")
+    i = 0
+    while i < len(entries):
+        entry = entries[i]
+        i += 1
+        if len(entry) < 4:
+            continue
+        code, path = entry[:2], entry[3:]
+        if "R" in code or "C" in code:
+            i += 1   # -z puts a rename's original path in the next entry
+        if is_build_dir(path) or any(path == ig or path.startswith(ig.rstrip("/") + "/") for ig in ignore):
+            continue
+        if path == readme_rel and readme_generated_only(source_dir, readme, path):
             continue
         changed.append(path)
-    dirty = f"yes ({len(changed)} uncommitted path(s))" if changed else "no"
-    return commit.strip(), dirty
+    return Provenance(commit=commit, changed=sorted(changed))
+
+
+def readme_generated_only(source_dir: Path, readme: Path, rel_path: str) -> bool:
+    """True when the README differs from HEAD only between the summary markers."""
+    try:
+        head = git(source_dir, "show", f"HEAD:{rel_path}")
+        now = readme.read_text(encoding="utf-8")
+    except (GitError, OSError, UnicodeDecodeError):
+        return False
+    return outside_generated(head) == outside_generated(now)
 
 
 def read_junit(path: Path):
@@ -293,7 +461,7 @@ def render_case(case: dict, summ: dict, plot_result, figures: list[tuple[str, st
     title = case.get("title") or case["case"]
     lines = [f'<a id="{anchor(case["dir"])}"></a>', "", f"## {case['case']}: {title}", ""]
     meta = [f"seed section {case.get('seed_section', '?')}", f"tier {case.get('tier', '?')}",
-            f"status **{summ['status']}**", f"{summ['matched']}/{summ['total']} checks as expected"]
+            f"gating checks: {gating_text(summ)}", f"reported only: {reported_text(summ)}"]
     if case["dir"] != case["case"]:
         meta.append(f"results in `{case['dir']}/`")
     lines += [" · ".join(meta), ""]
@@ -305,13 +473,25 @@ def render_case(case: dict, summ: dict, plot_result, figures: list[tuple[str, st
         for check, ev in zip(case["checks"], summ["evals"]):
             check = check if isinstance(check, dict) else {}
             note = check.get("note", "") or ""
-            if ev["warnings"]:
-                note = (note + "; " if note else "") + "⚠ " + "; ".join(ev["warnings"])
-            rows.append([cell(check.get("name", "?")), cell(check.get("value")), cell(threshold_text(check)),
-                         cell(ev["expected"]), cell(ev["outcome"]),
-                         MARK_OK if ev["matches"] else f"{MARK_BAD} **no**", cell(note)])
-        lines += ["### Checks", ""]
-        lines += table(["check", "value", "criterion", "expected", "outcome", "as expected", "note"], rows)
+            warnings = list(ev["warnings"])
+            if not ev["gating_recorded"]:
+                warnings.append("no gating flag recorded: counted as gating")
+            if warnings:
+                note = (note + "; " if note else "") + "⚠ " + "; ".join(warnings)
+            if ev["matches"]:
+                as_expected = MARK_OK
+            elif ev["gating"]:
+                as_expected = f"{MARK_BAD} **no**"
+            else:
+                as_expected = f"{MARK_WARN} no (reported only)"
+            rows.append([cell(check.get("name", "?")), "**yes**" if ev["gating"] else "no",
+                         cell(check.get("value")), cell(threshold_text(check)), cell(ev["expected"]),
+                         cell(ev["outcome"]), as_expected, cell(note)])
+        lines += ["### Checks", "",
+                  "A gating check that misses its expectation fails the runner and so CTest; the others "
+                  "are reported only. Expected `fail`: the seed itself reports the failure.", ""]
+        lines += table(["check", "gating", "value", "criterion", "expected", "outcome", "as expected", "note"],
+                       rows)
         lines.append("")
     else:
         lines += ["No checks recorded: a case must assert numbers, not only finish.", ""]
@@ -350,35 +530,148 @@ def run_time_text(case: dict) -> str:
     return f"{seconds:.0f} s" if seconds < 120 else f"{seconds / 60:.1f} min"
 
 
-def write_report(results: Path, out: Path, source_dir: Path, python: str, junit_path: Path | None = None) -> int:
+# --------------------------------------------------------------------------- README
+def section_key(case: dict) -> tuple:
+    """Sort key: seed section as numbers ('3.4, 3.5' -> (3, 4)), then the case name."""
+    first = re.findall(r"\d+(?:\.\d+)*", str(case.get("seed_section", "")))
+    nums = tuple(int(x) for x in first[0].split(".")) if first else (10**6,)
+    return nums, str(case["case"])
+
+
+def chapters_text(cases: list[dict]) -> str:
+    chapters = sorted({int(m) for c in cases for m in re.findall(r"(\d+)\.\d+", str(c.get("seed_section", "")))})
+    if not chapters:
+        return ""
+    if len(chapters) > 1 and chapters == list(range(chapters[0], chapters[-1] + 1)):
+        return f"seed chapters {chapters[0]}-{chapters[-1]}"
+    return ("seed chapter " if len(chapters) == 1 else "seed chapters ") + ", ".join(map(str, chapters))
+
+
+def first_miss(case: dict, summ: dict) -> str:
+    """The first gating miss, else the first reported-only one, as README text."""
+    pairs = [(c if isinstance(c, dict) else {}, e) for c, e in zip(case["checks"], summ["evals"])]
+    misses = [(c, e) for c, e in pairs if not e["matches"] and e["gating"]] + \
+             [(c, e) for c, e in pairs if not e["matches"] and not e["gating"]]
+    if not misses:
+        return ""
+    check, ev = misses[0]
+    name = str(check.get("name", "?")).replace("`", "'").replace("\n", " ")
+    value = check.get("value")
+    got = f"is {fmt_value(value)}" if value is not None else "has no value"
+    want = threshold_text(check)
+    text = (f"first miss ({'gating' if ev['gating'] else 'reported only'}): `{name}` {got}"
+            f"{', criterion ' + want if want else ''}, expected {ev['expected']}")
+    if len(misses) > 1:
+        more = len(misses) - 1
+        text += f" ({more} more miss{'' if more == 1 else 'es'})"
+    return text
+
+
+def readme_case_line(case: dict, summ: dict, readme_dir: Path, source_dir: Path) -> str:
+    title = str(case.get("title") or case["case"]).replace("\n", " ")
+    parts = [f"gating {gating_text(summ, marks=False)}", f"reported only {reported_text(summ, marks=False)}"]
+    miss = first_miss(case, summ)
+    if miss:
+        parts.append(miss)
+    line = f"- {title} ({case.get('seed_section', '?')}): " + "; ".join(parts)
+    case_readme = source_dir / "verification" / str(case["case"]) / "README.md"
+    if case_readme.is_file():
+        link = Path(os.path.relpath(case_readme, readme_dir)).as_posix()
+        line += f" ([`{link}`]({link}))"
+    return line + "."
+
+
+def readme_section(full: list[tuple[dict, dict]], prov: Provenance, date: str, readme_dir: Path,
+                   source_dir: Path, report_path: Path) -> str:
+    """The text between the README markers: where the numbers come from, one line per case."""
+    report = Path(os.path.relpath(report_path, readme_dir)).as_posix()
+    guide = Path(os.path.relpath(source_dir / "verification" / "README.md", readme_dir)).as_posix()
+    full = sorted(full, key=lambda cs: section_key(cs[0]))
+    scope = chapters_text([c for c, _ in full])
+    n_ok = sum(s["ok"] for _, s in full)
+    lines = ["<!-- Written by reports/make_report.py from the full verification tier: "
+             "change the generator or the cases, not this text. -->",
+             f"Verified so far{' (' + scope + ')' if scope else ''}: the full verification tier at "
+             f"{prov.short()}, {date}. Every check is in [`{report}`]({report}); cases, tiers and "
+             f"times in [`{guide}`]({guide}). A gating check that misses fails CI; the others are "
+             f"reported only. {n_ok} of {len(full)} cases meet every gating check."]
+    lines += [readme_case_line(c, s, readme_dir, source_dir) for c, s in full]
+    return "\n".join(lines) + "\n"
+
+
+def expected_cases(source_dir: Path) -> list[str]:
+    """Cases of verification/ (folders with a study.yaml)."""
+    vdir = source_dir / "verification"
+    if not vdir.is_dir():
+        return []
+    return sorted(d.name for d in vdir.iterdir() if (d / "study.yaml").is_file())
+
+
+def full_tier_gaps(cases: list[tuple[dict, dict]], source_dir: Path) -> list[str]:
+    """Cases without a usable full-tier result: those of verification/, or, when the
+    source has none, those that have a result of any tier."""
+    full = {str(c["case"]) for c, _ in cases if c.get("tier") == "full" and "error" not in c}
+    known = expected_cases(source_dir)
+    if not known:
+        known = sorted({str(c["case"]) for c, _ in cases if "error" not in c} |
+                       {c["dir"].removesuffix("-quick") for c, _ in cases if "error" in c})
+    return [k for k in known if k not in full]
+
+
+def update_readme(readme: Path, section: str) -> bool:
+    """Replaces the text between the markers; True when the file changed. Raises ValueError."""
+    text = readme.read_text(encoding="utf-8")
+    before, old, after = split_readme(text, readme.name)
+    if old == section:
+        return False
+    tmp = readme.with_name(readme.name + ".tmp")
+    tmp.write_text(before + section + after, encoding="utf-8")
+    tmp.replace(readme)
+    return True
+
+
+# --------------------------------------------------------------------------- report
+def write_report(results: Path, out: Path, source_dir: Path, python: str, junit_path: Path | None = None,
+                 readme: Path | None = None) -> int:
     out.mkdir(parents=True, exist_ok=True)
     fig_dir = out / "figures"
     report_path = out / "VALIDATION.md"
-    commit, dirty = git_state(source_dir, [report_path, fig_dir])
+    # The README's generated section is output too, also when this run does not rewrite it.
+    prov = git_state(source_dir, [report_path, fig_dir, results], readme or source_dir / "README.md")
+    generated_at = utc_now()
 
     result_files = sorted(results.glob("*/result.json"), key=lambda p: p.parent.name) if results.is_dir() else []
     header = ["# HFDDA validation report", "",
-              f"- generated: {utc_now()}",
-              f"- commit: `{commit}`",
-              f"- uncommitted changes: {dirty}",
+              f"- generated: {generated_at}",
+              f"- commit: {prov.commit_line()}",
               "- produced by `scripts/verify` (`reports/make_report.py`); "
               "harness described in `verification/README.md`"]
     ctest_section: list[str] = []
     if junit_path is not None:
         ctest_head, ctest_section = junit_lines(read_junit(junit_path))
         header.append(ctest_head)
-    header.append("")
+
+    readme_error = ""
+    if readme is not None:
+        try:
+            split_readme(readme.read_text(encoding="utf-8"), str(readme))
+        except (OSError, UnicodeDecodeError, ValueError) as e:
+            readme_error = str(e)
 
     if not result_files:
-        lines = header + [f"**No verification results found** in `{results}`: "
+        if readme is not None:
+            header.append(f"- README summary: not updated ({readme_error or 'no results'})")
+        lines = header + ["", f"**No verification results found** in `{results}`: "
                           "no verification test wrote a result.json.", ""] + ctest_section
         report_path.write_text("\n".join(lines), encoding="utf-8")
         print(f"make_report: no results in {results}; wrote {report_path}", file=sys.stderr)
+        if readme_error:
+            print(f"make_report: {readme_error}", file=sys.stderr)
         return 1
 
     fig_dir.mkdir(parents=True, exist_ok=True)
     produced: set[str] = set()
-    sections, summary_rows, n_ok = [], [], 0
+    sections, summary_rows, summarised = [], [], []
     for path in result_files:
         case = load_case(path)
         case_dir = path.parent
@@ -395,16 +688,15 @@ def write_report(results: Path, out: Path, source_dir: Path, python: str, junit_
             produced.add(dest_name)
             figures.append((name, f"figures/{dest_name}"))
         summ = summarise(case)
-        n_ok += summ["ok"]
-        status = summ["status"] if summ["ok"] else f"**{summ['status']}**"
+        summarised.append((case, summ))
         n_fig = sum(rel is not None for _, rel in figures)
         fig_text = f"{n_fig}/{len(figures)}" if figures else "none"
         if n_fig < len(figures) or (plot_result is not None and not plot_result[0]):
             fig_text += " ⚠ plot failed" if plot_result is not None and not plot_result[0] else " ⚠"
         summary_rows.append([f"[{cell(str(case['case']))}](#{anchor(case['dir'])})",
                              cell(str(case.get("seed_section", ""))), cell(str(case.get("tier", ""))),
-                             f"{MARK_OK if summ['ok'] else MARK_BAD} {status}",
-                             f"{summ['matched']}/{summ['total']}", run_time_text(case), fig_text])
+                             cell(gating_text(summ)), cell(reported_text(summ)),
+                             run_time_text(case), fig_text])
         sections += render_case(case, summ, plot_result, figures)
 
     # Figures of cases no longer in the results would contradict the report: drop them.
@@ -412,17 +704,46 @@ def write_report(results: Path, out: Path, source_dir: Path, python: str, junit_
         if stale.name not in produced:
             stale.unlink()
 
+    readme_note = ""
+    if readme is not None:
+        gaps = full_tier_gaps(summarised, source_dir)
+        if readme_error:
+            readme_note = f"not updated ({readme_error})"
+        elif gaps:
+            readme_note = ("not updated: partial results, no full-tier result for " +
+                           ", ".join(f"`{g}`" for g in gaps))
+        else:
+            full = [(c, s) for c, s in summarised if c.get("tier") == "full"]
+            section = readme_section(full, prov, generated_at[:10], readme.resolve().parent,
+                                     source_dir.resolve(), report_path.resolve())
+            try:
+                changed = update_readme(readme, section)
+                readme_note = f"`{readme.name}` section regenerated from the full-tier results" + \
+                    ("" if changed else " (unchanged)")
+            except (OSError, ValueError) as e:
+                readme_error = str(e)
+                readme_note = f"not updated ({readme_error})"
+        header.append(f"- README summary: {readme_note}")
+    header.append("")
+
+    n = len(summarised)
+    n_ok = sum(s["ok"] for _, s in summarised)
+    n_all = sum(s["all_match"] for _, s in summarised)
     lines = header + ["## Summary", "",
-                      f"{n_ok} of {len(result_files)} case results pass. A check whose seed result is a "
-                      "known failure (expected `fail`) counts as matched when it fails.", ""]
-    lines += table(["case", "seed section", "tier", "status", "checks as expected", "run time", "figures"],
+                      f"{n_ok} of {n} case results meet every gating check (a gating miss fails CTest); "
+                      f"{n_all} of {n} have every check as expected, the reported-only ones included. "
+                      "A check whose seed result is a known failure (expected `fail`) counts as expected "
+                      "when it fails.", ""]
+    lines += table(["case", "seed section", "tier", "gating checks", "reported only", "run time", "figures"],
                    summary_rows)
     lines.append("")
     lines += ctest_section
     lines += sections
     report_path.write_text("\n".join(lines).rstrip("\n") + "\n", encoding="utf-8")
-    print(f"make_report: {n_ok}/{len(result_files)} case results pass; wrote {report_path}")
-    return 0
+    print(f"make_report: {n_ok}/{n} case results meet every gating check; wrote {report_path}")
+    if readme is not None:
+        print(f"make_report: README summary {readme_note}", file=sys.stderr if readme_error else sys.stdout)
+    return 1 if readme_error else 0
 
 
 def main(argv=None) -> int:
@@ -433,8 +754,10 @@ def main(argv=None) -> int:
                     help="repository root holding verification/<case>/plot.py (default: %(default)s)")
     ap.add_argument("--python", default=DEFAULT_PYTHON, help="interpreter for plot.py (default: %(default)s)")
     ap.add_argument("--junit", type=Path, help="ctest --output-junit file of the same run (optional)")
+    ap.add_argument("--readme", type=Path,
+                    help="README whose verified-summary section is rewritten from full-tier results (optional)")
     args = ap.parse_args(argv)
-    return write_report(args.results, args.out, args.source_dir, args.python, args.junit)
+    return write_report(args.results, args.out, args.source_dir, args.python, args.junit, args.readme)
 
 
 if __name__ == "__main__":
