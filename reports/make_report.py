@@ -153,6 +153,14 @@ def evaluate_check(check: dict) -> dict:
     if expected not in ("pass", "fail"):
         warnings.append(f"unknown expectation '{expected}'")
     matches = (passed and expected == "pass") or (not passed and expected == "fail")
+    # The harness decides whether an outcome is the expected one (an expected failure
+    # must be a completed run with a finite value, or a stop with the named error); a
+    # miss without a value is never an expected failure here either.
+    harness_says = check.get("as_expected")
+    if isinstance(harness_says, bool):
+        matches = matches and harness_says
+    elif expected == "fail" and not is_number(check.get("value")):
+        matches = False
     if warnings:
         matches = False
     # The harness always writes `gating`; without it the check is counted as gating,
@@ -163,7 +171,8 @@ def evaluate_check(check: dict) -> dict:
     if passed:
         outcome = "pass" if expected == "pass" else "unexpected pass"
     else:
-        outcome = "expected failure (seed)" if expected == "fail" else "**FAIL**"
+        outcome = ("expected failure (seed)" if matches else "**FAIL** (no value or no completed run)") \
+            if expected == "fail" else "**FAIL**"
     return {"passed": passed, "expected": expected, "matches": matches, "gating": gating,
             "gating_recorded": gating_recorded, "outcome": outcome, "warnings": warnings}
 

@@ -199,6 +199,22 @@ class MakeReportTest(unittest.TestCase):
                       "| ⚠ no (reported only) |", md)
         self.assertIn("✅ 2/2 as expected (1 expected failure) | ⚠ 0/1 as expected (1 expected failure)", md)
 
+    def test_expected_failure_without_a_value_is_a_failure(self):
+        # A run that crashed or gave NaN is not "fails as in the seed": the harness says
+        # as_expected false, and a missing value alone is enough when it does not.
+        nan_check = check("crashed quadrilateral run", None, 0.03, expected="fail", passed=False)
+        nan_check["as_expected"] = False
+        old_driver = check("no value, old driver", None, 0.03, expected="fail", passed=False)
+        old_driver.pop("as_expected", None)
+        write_case(self.results, "theta", {
+            "case": "theta", "title": "T", "seed_section": "3.1", "tier": "full", "status": "fail",
+            "checks": [nan_check, old_driver]})
+        md = self.report()
+        self.assertNotIn("expected failure (seed)", md)
+        self.assertIn("| crashed quadrilateral run | **yes** | n/a | <= 0.03 | fail | **FAIL** (no value or no "
+                      "completed run) | ❌ **no** |", md)
+        self.assertIn("❌ **0/2 as expected", md)
+
     def test_mismatch_and_inconsistent_driver(self):
         write_case(self.results, "delta", {
             "case": "delta", "title": "D", "seed_section": "4.2", "tier": "quick", "status": "fail",
