@@ -5,17 +5,15 @@ Usage: /usr/bin/python3 plot.py RESULT_DIR
 
 Each figure has three panels against time: A half-length, B inlet net pressure,
 C inlet width, with the M-vertex solution (analytical.csv, computed by the driver from
-solver/analytical/kgd.hpp, so the plot and the checks share one formula).
+solver/analytical/kgd.hpp, so the plot and the checks share one formula). The panels
+are drawn by verification/harness/kgd_plots.py, shared with the toughness case.
 """
-import json
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "harness"))
+import kgd_plots  # noqa: E402
+import plot_common  # noqa: E402
 
 # (figure file, title, [(variant, marker)]) in the seed's order of Figures 3.4-3.6.
 FIGURES = {
@@ -33,82 +31,28 @@ FIGURES = {
     ],
 }
 
-PANELS = [  # (column, exact column, scale, y label)
-    ("half_length_m", "half_length_m", 1.0, "A: half-length l [m]"),
-    ("inlet_net_pressure_Pa", "inlet_net_pressure_Pa", 1e-6, "B: inlet net pressure p0 [MPa]"),
-    ("inlet_width_m", "inlet_width_m", 1e3, "C: inlet width w0 [mm]"),
-]
-
-
-def load_csv(path):
-    if not os.path.exists(path):
-        return None
-    data = np.genfromtxt(path, delimiter=",", names=True)
-    return np.atleast_1d(data) if data.size else None
-
-
-def variant_label(metrics, name):
-    m = metrics.get(name, {})
-    label = m.get("label", name)
-    err = m.get("error_at_end")
-    if isinstance(err, dict):
-        label += " (10 s: l {:+.1f} %, p0 {:+.1f} %, w0 {:+.1f} %)".format(
-            100 * err["half_length"], 100 * err["inlet_net_pressure"], 100 * err["inlet_width"])
-    elif m and not m.get("completed", False):
-        label += " (did not complete)"
-    return label
-
 
 def figure(result_dir, metrics, analytical, filename, title, variants):
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    fig, axes = kgd_plots.panels()
+    if analytical is not None:
+        kgd_plots.draw_solution(axes, analytical, "M-vertex (zero toughness, no leak-off)")
     plotted = 0
-    for ax, (column, exact_column, scale, ylabel) in zip(axes, PANELS):
-        peaks = []
-        if analytical is not None:
-            ax.plot(analytical["time_s"], scale * analytical[exact_column], "k-", lw=2,
-                    label="M-vertex (zero toughness, no leak-off)")
-        for name, marker in variants:
-            series = load_csv(os.path.join(result_dir, f"series_{name}.csv"))
-            if series is None:
-                continue
-            # the half-length moves in steps of one joint: draw it as a staircase
-            drawstyle = "steps-post" if column == "half_length_m" else "default"
-            ax.plot(series["time_s"], scale * series[column], marker + "-", ms=4, lw=1,
-                    drawstyle=drawstyle, label=variant_label(metrics, name))
-            plotted += 1
-            if column == "inlet_net_pressure_Pa":
-                finite = series[column][np.isfinite(series[column])]
-                if finite.size:
-                    peaks.append(float(np.max(finite)))
-        if column == "inlet_net_pressure_Pa":
-            # p0 ~ t^(-1/3) is unbounded at t = 0: show the range of the data and of the
-            # solution from the first quarter second on.
-            top = [scale * v for v in peaks] if peaks else []
-            if analytical is not None:
-                late = analytical["time_s"] >= 0.25
-                top.append(scale * float(np.max(analytical[exact_column][late])))
-            if top:
-                ax.set_ylim(0.0, 1.15 * max(top))
-        ax.set_xlabel("time t [s]")
-        ax.set_ylabel(ylabel)
-        ax.grid(alpha=0.3)
-    if axes[2].get_legend_handles_labels()[0]:
-        axes[2].legend(fontsize=6.5, loc="lower right")  # the emptiest corner of the three panels
-    if plotted == 0:
-        for ax in axes:
-            ax.text(0.5, 0.5, "no completed run data", transform=ax.transAxes, ha="center", color="r")
-    fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(os.path.join(result_dir, filename), dpi=130)
-    plt.close(fig)
+    for name, marker in variants:
+        series = plot_common.load_csv(os.path.join(result_dir, f"series_{name}.csv"))
+        if series is None:
+            continue
+        kgd_plots.draw_run(axes, series, marker, kgd_plots.variant_label(metrics, name, "10 s"))
+        plotted += 1
+    # p0 range: the data and the solution from the first quarter second on; the legend
+    # in the emptiest corner of the three panels.
+    kgd_plots.finish(fig, axes, result_dir, filename, title, plotted, pressure_from_s=0.25, pressure_margin=1.15,
+                     legend_axis=2)
 
 
 def main(result_dir):
-    with open(os.path.join(result_dir, "result.json")) as f:
-        result = json.load(f)
-    metrics = result.get("metrics", {})
-    analytical = load_csv(os.path.join(result_dir, "analytical.csv"))
-    for filename, title, variants in FIGURES.get(result.get("tier", "full"), FIGURES["full"]):
+    tier, metrics = plot_common.read_result(result_dir)
+    analytical = plot_common.load_csv(os.path.join(result_dir, "analytical.csv"))
+    for filename, title, variants in plot_common.for_tier(FIGURES, tier):
         figure(result_dir, metrics, analytical, filename, title, variants)
 
 

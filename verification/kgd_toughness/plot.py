@@ -8,17 +8,15 @@ Each figure has three panels against time, as in the seed: A half-length, B inle
 pressure (net: there is no background stress), C inlet width, with the K-vertex solution
 of each variant's toughness (analytical_<variant>.csv, computed by the driver from
 solver/analytical/kgd.hpp, so the plot and the checks share one formula). Variants with
-the same K_IC share one curve.
+the same K_IC share one curve. The panels are drawn by verification/harness/kgd_plots.py,
+shared with the viscosity case.
 """
-import json
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "harness"))
+import kgd_plots  # noqa: E402
+import plot_common  # noqa: E402
 
 # (figure file, title, [(variant, marker)]) in the seed's order of Figures 4.11-4.14.
 FIGURES = {
@@ -38,86 +36,30 @@ FIGURES = {
     ],
 }
 
-PANELS = [  # (column, scale, y label)
-    ("half_length_m", 1.0, "A: half-length l [m]"),
-    ("inlet_net_pressure_Pa", 1e-6, "B: inlet pressure p0 [MPa]"),
-    ("inlet_width_m", 1e3, "C: inlet width w0 [mm]"),
-]
-
-
-def load_csv(path):
-    if not os.path.exists(path):
-        return None
-    data = np.genfromtxt(path, delimiter=",", names=True)
-    return np.atleast_1d(data) if data.size else None
-
-
-def variant_label(metrics, name):
-    m = metrics.get(name, {})
-    label = m.get("label", name)
-    err = m.get("error_at_end")
-    if isinstance(err, dict):
-        label += " (end: l {:+.1f} %, p0 {:+.1f} %, w0 {:+.1f} %)".format(
-            100 * err["half_length"], 100 * err["inlet_net_pressure"], 100 * err["inlet_width"])
-    elif m and not m.get("completed", False):
-        label += " (did not complete)"
-    return label
-
 
 def figure(result_dir, metrics, filename, title, variants):
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    fig, axes = kgd_plots.panels()
     plotted = 0
-    drawn_k = []  # toughness of the analytical curves drawn, so a shared curve is drawn once
+    drawn_k = []  # toughness of the solutions drawn, so a shared curve is drawn once
     for name, marker in variants:
-        series = load_csv(os.path.join(result_dir, f"series_{name}.csv"))
-        exact = load_csv(os.path.join(result_dir, f"analytical_{name}.csv"))
+        series = plot_common.load_csv(os.path.join(result_dir, f"series_{name}.csv"))
+        exact = plot_common.load_csv(os.path.join(result_dir, f"analytical_{name}.csv"))
         kic = metrics.get(name, {}).get("fracture_toughness_Pa_sqrt_m")
-        new_curve = exact is not None and kic is not None and all(
-            abs(kic - k) > 1e-3 * k for k in drawn_k)
-        if new_curve:
+        if exact is not None and kic is not None and all(abs(kic - k) > 1e-3 * k for k in drawn_k):
             drawn_k.append(kic)
-        for ax, (column, scale, ylabel) in zip(axes, PANELS):
-            if new_curve:
-                ax.plot(exact["time_s"], scale * exact[column], "-", color="k", lw=2,
-                        alpha=1.0 if len(drawn_k) == 1 else 0.5,
-                        label="K-vertex, K_IC = {:.3g} MPa m^0.5".format(kic * 1e-6))
-            if series is None:
-                continue
-            # the half-length moves in steps of one joint: draw it as a staircase
-            drawstyle = "steps-post" if column == "half_length_m" else "default"
-            ax.plot(series["time_s"], scale * series[column], marker + "-", ms=4, lw=1,
-                    drawstyle=drawstyle, label=variant_label(metrics, name))
+            kgd_plots.draw_solution(axes, exact, "K-vertex, K_IC = {:.3g} MPa m^0.5".format(kic * 1e-6),
+                                    alpha=1.0 if len(drawn_k) == 1 else 0.5)
         if series is not None:
+            kgd_plots.draw_run(axes, series, marker, kgd_plots.variant_label(metrics, name, "end"))
             plotted += 1
-    for ax, (column, scale, ylabel) in zip(axes, PANELS):
-        if column == "inlet_net_pressure_Pa":
-            # p0 ~ t^(-1/3) is unbounded at t = 0: show the range from t = 1 s on
-            top = []
-            for line in ax.get_lines():
-                x, y = line.get_xdata(), line.get_ydata()
-                late = np.asarray(x) >= 1.0
-                if np.any(late):
-                    top.append(float(np.nanmax(np.asarray(y)[late])))
-            if top:
-                ax.set_ylim(0.0, 1.3 * max(top))
-        ax.set_xlabel("time t [s]")
-        ax.set_ylabel(ylabel)
-        ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=6.5, loc="lower right")  # the curves rise from the lower left
-    if plotted == 0:
-        for ax in axes:
-            ax.text(0.5, 0.5, "no completed run data", transform=ax.transAxes, ha="center", color="r")
-    fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(os.path.join(result_dir, filename), dpi=130)
-    plt.close(fig)
+    # p0 range from t = 1 s on; the legend where the curves rise from the lower left.
+    kgd_plots.finish(fig, axes, result_dir, filename, title, plotted, pressure_from_s=1.0, pressure_margin=1.3,
+                     legend_axis=0, pressure_label="inlet pressure p0 [MPa]")
 
 
 def main(result_dir):
-    with open(os.path.join(result_dir, "result.json")) as f:
-        result = json.load(f)
-    metrics = result.get("metrics", {})
-    for filename, title, variants in FIGURES.get(result.get("tier", "full"), FIGURES["full"]):
+    tier, metrics = plot_common.read_result(result_dir)
+    for filename, title, variants in plot_common.for_tier(FIGURES, tier):
         figure(result_dir, metrics, filename, title, variants)
 
 

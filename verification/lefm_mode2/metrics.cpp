@@ -16,6 +16,7 @@
 #include "fracture/fracture_criteria.hpp"
 #include "harness.hpp"
 #include "mesh/mesh.hpp"
+#include "statistics.hpp"
 
 namespace hfdda::verification {
 namespace {
@@ -30,12 +31,8 @@ struct Setup {
 /// The breakable joints of the path: their lengths and cohesion.
 struct Path {
   int joints = 0;
-  double length_min_m = kNaN, length_max_m = kNaN;
-  double cohesion_min_Pa = kNaN, cohesion_max_Pa = kNaN;
+  Range length_m, cohesion_Pa;
 };
-
-double min_nan(double a, double b) { return std::isnan(a) ? b : std::min(a, b); }
-double max_nan(double a, double b) { return std::isnan(a) ? b : std::max(a, b); }
 
 Setup setup_of(const io::CaseConfig& c) {
   if (!c.load_ramp) throw std::runtime_error("case has no load_ramp");
@@ -73,10 +70,8 @@ Path path_of(const mesh::Mesh& mesh, const Setup& s) {
     const double length = (mesh.points[joint.point_q] - mesh.points[joint.point_p]).norm();
     const double c0 = fracture::bond_strength(joint.properties, length).cohesion_Pa;
     ++p.joints;
-    p.length_min_m = min_nan(p.length_min_m, length);
-    p.length_max_m = max_nan(p.length_max_m, length);
-    p.cohesion_min_Pa = min_nan(p.cohesion_min_Pa, c0);
-    p.cohesion_max_Pa = max_nan(p.cohesion_max_Pa, c0);
+    p.length_m.add(length);
+    p.cohesion_Pa.add(c0);
   }
   return p;
 }
@@ -96,7 +91,7 @@ Metrics variant_metrics(const VariantRun& r) {
       // reported by validate
     }
   if (r.model) path = path_of(r.model->system->mesh(), s);
-  const double l = path.length_max_m, c0 = path.cohesion_max_Pa, a = s.half_length_m;
+  const double l = path.length_m.max, c0 = path.cohesion_Pa.max, a = s.half_length_m;
   simulation::LoadRampOutcome o;
   if (r.model && r.model->ramp) o = r.model->ramp->outcome();
   const double stop = o.stop_reached ? o.stop_Pa : kNaN;
@@ -119,8 +114,8 @@ Metrics variant_metrics(const VariantRun& r) {
                  {"abs_error_exact_field", std::abs(err_exact)},
                  {"a0_offset_increments", a0_increments},
                  {"first_failure_at_jump", o.first_failure_at_jump ? 1.0 : 0.0},
-                 {"path_length_spread", path.joints > 0 ? l / path.length_min_m - 1.0 : kNaN},
-                 {"path_cohesion_spread", path.joints > 0 ? c0 / path.cohesion_min_Pa - 1.0 : kNaN},
+                 {"path_length_spread", path.length_m.spread()},
+                 {"path_cohesion_spread", path.cohesion_Pa.spread()},
                  {"spread_first_failure_Pa", stop - o.first_failure_Pa},
                  {"spread_first_joint_failure_Pa", stop - o.first_joint_failure_Pa}};
   nlohmann::json& m = out.json;

@@ -23,6 +23,8 @@
 #include "fluid/flow_network.hpp"
 #include "harness.hpp"
 #include "mesh/mesh.hpp"
+#include "simulation/snapshots.hpp"
+#include "statistics.hpp"
 
 namespace hfdda::verification {
 namespace {
@@ -233,13 +235,7 @@ InterfaceFaces interface_faces(const simulation::Model& model, const Vec2& origi
 
 
 double max_abs(const std::vector<Sample>& samples, double Sample::*field) {
-  if (samples.empty()) return kNaN;
-  double e = 0.0;
-  for (const Sample& s : samples) {
-    if (!std::isfinite(s.*field)) return kNaN;
-    e = std::max(e, std::abs(s.*field));
-  }
-  return e;
+  return max_abs_finite(samples, [field](const Sample& s) { return s.*field; });
 }
 
 double sum(const std::vector<Sample>& samples, double Sample::*field) {
@@ -255,24 +251,28 @@ void validate(const io::CaseConfig& config, const VariantSpec&) {
   if (!config.domain.inner) throw std::runtime_error("case needs an inner domain");
 }
 
-/// The committed state of every mesh joint (the last completed step if the run stopped).
+/// The committed state of every mesh joint (the last completed step if the run stopped):
+/// the library's joint rows (simulation/snapshots.hpp: fluid-filled, contact states,
+/// apertures), placed at the joints' initial mesh coordinates (the symmetry keys and the
+/// plots need the undeformed pattern; the rows carry the current end points), with the
+/// flow network's apertures on fluid-filled joints and the joints' bond properties.
 std::vector<JointState> joint_states(const simulation::Model& model) {
-  const dda::BlockSystem& s = *model.system;
-  const mesh::Mesh& mesh = s.mesh();
+  const mesh::Mesh& mesh = model.system->mesh();
   std::vector<JointState> joints;
-  for (int j = 0; j < static_cast<int>(mesh.joints.size()); ++j) {
+  for (const io::JointRow& row : simulation::joint_rows(*model.system, model.flow.get())) {
+    const mesh::Joint& joint = mesh.joints[row.id];
     JointState js;
-    js.id = j;
-    js.p = mesh.points[mesh.joints[j].point_p];
-    js.q = mesh.points[mesh.joints[j].point_q];
-    js.wetted = model.flow->wetted(j);
-    js.open_p = s.contacts()[2 * j].state == dda::ContactState::open;
-    js.open_q = s.contacts()[2 * j + 1].state == dda::ContactState::open;
-    js.aperture_p = js.wetted ? model.flow->aperture(j, 0) : std::max(0.0, s.joint_gap(j, 0));
-    js.aperture_q = js.wetted ? model.flow->aperture(j, 1) : std::max(0.0, s.joint_gap(j, 1));
-    js.breakable = mesh.joints[j].properties.breakable;
-    js.initially_open = mesh.joints[j].properties.initially_open;
-    js.tensile_strength = mesh.joints[j].properties.tensile_strength_Pa;
+    js.id = row.id;
+    js.p = mesh.points[joint.point_p];
+    js.q = mesh.points[joint.point_q];
+    js.wetted = row.fluid;
+    js.open_p = row.state_p == dda::to_string(dda::ContactState::open);
+    js.open_q = row.state_q == dda::to_string(dda::ContactState::open);
+    js.aperture_p = js.wetted ? model.flow->aperture(row.id, 0) : row.aperture_p_m;
+    js.aperture_q = js.wetted ? model.flow->aperture(row.id, 1) : row.aperture_q_m;
+    js.breakable = joint.properties.breakable;
+    js.initially_open = joint.properties.initially_open;
+    js.tensile_strength = joint.properties.tensile_strength_Pa;
     joints.push_back(js);
   }
   return joints;

@@ -11,13 +11,13 @@ draws the weak -45 degree diagonals in a darker grey (seed Fig. 3.18). Case (d) 
 mass ledger over time (seed Fig. 3.17), case (g) the vertical displacement of the two
 faces of the interface (seed Fig. 3.23).
 """
-import json
 import os
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "harness"))
+import plot_common  # noqa: E402  (first: selects the Agg backend)
+from plot_common import load_csv  # noqa: E402
 
-matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
@@ -45,13 +45,6 @@ PATTERNS = {  # figure -> [(variant, panel letter)]
 }
 
 
-def load_csv(path):
-    if not os.path.exists(path):
-        return None
-    data = np.genfromtxt(path, delimiter=",", names=True)
-    return np.atleast_1d(data) if data.size else None
-
-
 def panel_title(metrics, name, letter):
     m = metrics.get(name, {})
     title = (letter + ": " if letter else "") + m.get("label", name)
@@ -76,7 +69,7 @@ def draw_pattern(ax, result_dir, metrics, name, letter, weak_diagonals=False):
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     if joints is None:
-        ax.text(0.5, 0.5, "no joint data", transform=ax.transAxes, ha="center", color="r")
+        plot_common.mark_no_data([ax], "no joint data")
         return
     p = np.column_stack([joints["px"], joints["py"]])
     q = np.column_stack([joints["qx"], joints["qy"]])
@@ -105,16 +98,14 @@ def pattern_figure(result_dir, metrics, filename, title, panels):
     for ax, (name, letter) in zip(axes[0], panels):
         draw_pattern(ax, result_dir, metrics, name, letter, weak_diagonals=(name == "weak_diagonal"))
     fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(os.path.join(result_dir, filename), dpi=130)
-    plt.close(fig)
+    plot_common.save(fig, result_dir, filename)
 
 
 def mass_figure(result_dir, metrics):
     s = load_csv(os.path.join(result_dir, "series_leakoff_s0.csv"))
     fig, ax = plt.subplots(figsize=(7, 4.8))
     if s is None:
-        ax.text(0.5, 0.5, "no data", transform=ax.transAxes, ha="center", color="r")
+        plot_common.mark_no_data([ax], "no data")
     else:
         t = s["time_s"]
         total_in = s["mass_initial_kg"] + s["mass_injected_kg"]
@@ -130,16 +121,14 @@ def mass_figure(result_dir, metrics):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
     ax.set_title("Mass conservation with leak-off, dsigma = 0 (seed Fig. 3.17)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(result_dir, "propagation_leakoff_mass.png"), dpi=130)
-    plt.close(fig)
+    plot_common.save(fig, result_dir, "propagation_leakoff_mass.png")
 
 
 def faces_figure(result_dir, metrics):
     f = load_csv(os.path.join(result_dir, "interface_bimaterial.csv"))
     fig, ax = plt.subplots(figsize=(8, 4.4))
     if f is None:
-        ax.text(0.5, 0.5, "no fluid-filled interface joints", transform=ax.transAxes, ha="center", color="r")
+        plot_common.mark_no_data([ax], "no fluid-filled interface joints")
     else:
         order = np.argsort(f["x_m"], kind="stable")
         x = f["x_m"][order]
@@ -157,17 +146,12 @@ def faces_figure(result_dir, metrics):
     ax.legend(fontsize=8, loc="upper right")
     ax.set_title("Faces of the fluid-filled interface joints (seed Fig. 3.23; in-situ stress: fluid loading only)",
                  fontsize=9)
-    fig.tight_layout()
-    fig.savefig(os.path.join(result_dir, "propagation_bimaterial_faces.png"), dpi=130)
-    plt.close(fig)
+    plot_common.save(fig, result_dir, "propagation_bimaterial_faces.png")
 
 
 def main(result_dir):
-    with open(os.path.join(result_dir, "result.json")) as f:
-        result = json.load(f)
-    metrics = result.get("metrics", {})
-    tier = result.get("tier", "full")
-    for filename, title, panels in PATTERNS.get(tier, PATTERNS["full"]):
+    tier, metrics = plot_common.read_result(result_dir)
+    for filename, title, panels in plot_common.for_tier(PATTERNS, tier):
         pattern_figure(result_dir, metrics, filename, title, panels)
     if tier == "full":
         mass_figure(result_dir, metrics)
