@@ -17,16 +17,21 @@ inline double nan_min(double a, double b) { return std::isnan(a) ? b : std::min(
 /// max(a, b) with NaN as "no value yet": NaN in `a` gives `b`.
 inline double nan_max(double a, double b) { return std::isnan(a) ? b : std::max(a, b); }
 
-/// Smallest and largest of the values added; both NaN until the first one.
+/// Smallest and largest of the values added; both NaN until the first one. A value that
+/// is not a number makes the spread NaN (a check on it then fails) instead of being
+/// skipped.
 struct Range {
   double min = std::numeric_limits<double>::quiet_NaN();
   double max = std::numeric_limits<double>::quiet_NaN();
+  bool saw_nan = false;
   void add(double v) {
+    saw_nan = saw_nan || std::isnan(v);
     min = nan_min(min, v);
     max = nan_max(max, v);
   }
-  /// max / min - 1: how far the values spread (0 when all are equal; NaN when empty).
-  double spread() const { return max / min - 1.0; }
+  /// max / min - 1: how far the values spread (0 when all are equal; NaN when empty or
+  /// when a NaN was added).
+  double spread() const { return saw_nan ? std::numeric_limits<double>::quiet_NaN() : max / min - 1.0; }
 };
 
 /// Largest |value(item)| over `items`; NaN if there are none or any value is not finite.
