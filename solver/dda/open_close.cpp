@@ -88,9 +88,12 @@ std::optional<ContactChange> BlockSystem::open_close_change(int ci, const Contac
         return ContactChange{ci, ContactState::sliding, false, t.shear_N >= 0.0 ? 1.0 : -1.0};
       break;
     case ContactState::sliding: {
-      // Slip since locking, in the sense of the friction force; reversal re-locks.
+      // Slip of this step, in the sense of the friction force; reversal re-locks. (Slip
+      // since locking would let a contact whose driving shear fell below the limit be
+      // pulled back by its own friction until the whole slip was undone.)
       double slip = 0.0;
-      for (int k = 0; k < c.n_springs; ++k) slip += 1.0 / c.n_springs * spring_shear(c.springs[k], d);
+      for (int k = 0; k < c.n_springs; ++k)
+        slip += 1.0 / c.n_springs * (spring_shear(c.springs[k], d) - c.springs[k].shear0);
       if (t.normal_N > 0.0) return ContactChange{ci, ContactState::open};
       if (c.joint >= 0 && slip * c.friction_sign < 0.0) return ContactChange{ci, ContactState::locked};
       break;
@@ -176,6 +179,8 @@ void BlockSystem::apply_change(const ContactChange& ch, const Eigen::VectorXd& d
       gap_trial += spring_gap(c.springs[k], d) / c.n_springs;
     }
     fraction = gap_start <= 0.0 ? 0.0 : gap_trial < 0.0 ? gap_start / (gap_start - gap_trial) : 1.0;
+  } else if (c.joint >= 0 && c.state == ContactState::sliding && ch.to == ContactState::locked) {
+    fraction = 0.0;  // its slip reversed during the step: it locks where the step began
   }
   c.state = ch.to;
   for (int k = 0; k < c.n_springs; ++k) {
