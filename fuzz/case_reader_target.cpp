@@ -121,6 +121,17 @@ std::string broken_invariant(const io::CaseConfig& c) {
     if (!(std::isfinite(m.youngs_modulus_Pa) && m.youngs_modulus_Pa > 0 && std::isfinite(m.poissons_ratio) &&
           m.poissons_ratio > -1 && m.poissons_ratio < 0.5 && std::isfinite(m.density_kg_m3) && m.density_kg_m3 > 0))
       return "material '" + clipped(m.name) + "' has an impossible modulus, ratio or density";
+  // The documented lower bounds (docs/case_file.md), restated here as numbers so that a
+  // path through the reader that skips them is a finding: below them a run stops on a
+  // singular system instead of the reader naming the key.
+  for (const auto& m : c.materials)
+    if (!(m.youngs_modulus_Pa >= 1e3)) return "material '" + clipped(m.name) + "' is softer than 1e3 Pa";
+  if (c.fluid && !(c.fluid->bulk_modulus_Pa >= 1e5 && c.fluid->viscosity_Pa_s >= 1e-6 &&
+                   c.fluid->density_kg_m3 >= 1e-2))
+    return "fluid bulk modulus, viscosity or density below its documented bound";
+  if (!(c.contact.normal_stiffness_factor >= 1 && c.contact.shear_stiffness_factor >= 1 &&
+        c.contact.fixed_point_stiffness_factor >= 1))
+    return "a contact spring factor below 1 (softer than the rock)";
   for (const auto& f : c.fractures)
     if (!finite(f.from) || !finite(f.to) || f.from == f.to)
       return "fracture '" + clipped(f.name) + "' has no proper end points";

@@ -167,19 +167,12 @@ void BlockSystem::apply_change(const ContactChange& ch, const Eigen::VectorXd& d
     ++stats.vertex_vertex_activations;
   }
   if (c.joint < 0 && ch.to == ContactState::open) c.vertex_vertex_active = false;
-  // A joint contact that closes is referenced where its faces met between the start of
-  // the step and the trial (mean gap interpolated to zero), not at the trial's
-  // penetration: the tangential motion made while it was open is neither shear nor slip
-  // (a block released on an open joint slid its whole first step without friction).
+  // A joint contact that closes takes its shear reference at the trial (no shear at
+  // closing; where the faces met within the step is an open item, docs/design_notes.md
+  // section 11). A sliding contact whose slip of the step reversed locks where the step
+  // began.
   double fraction = 1.0;
-  if (c.joint >= 0 && c.state == ContactState::open && ch.to != ContactState::open) {
-    double gap_start = 0.0, gap_trial = 0.0;
-    for (int k = 0; k < c.n_springs; ++k) {
-      gap_start += c.springs[k].gap0 / c.n_springs;
-      gap_trial += spring_gap(c.springs[k], d) / c.n_springs;
-    }
-    fraction = gap_start <= 0.0 ? 0.0 : gap_trial < 0.0 ? gap_start / (gap_start - gap_trial) : 1.0;
-  } else if (c.joint >= 0 && c.state == ContactState::sliding && ch.to == ContactState::locked) {
+  if (c.joint >= 0 && c.state == ContactState::sliding && ch.to == ContactState::locked) {
     fraction = 0.0;  // its slip reversed during the step: it locks where the step began
   }
   c.state = ch.to;

@@ -128,6 +128,12 @@ SlideRun slide(double phi_deg, bool dynamic, const std::vector<Phase>& phases) {
   Vec2 moved = Vec2::Zero();
   const auto start = std::chrono::steady_clock::now();
   coupling::CoupledStep step(system, {});
+  // One step with gravity normal to the joint closes it without tangential motion, so
+  // the test starts from a closed, locked, unbonded joint: a contact that closes while
+  // the block also moves along it takes its shear reference at the trial, so that
+  // motion would cost no friction (docs/design_notes.md section 11).
+  system.set_body_force(-kDensity_kg_m3 * kGravity_m_s2 * up_normal);
+  step.advance(kDt_s, 0);
   for (const Phase& phase : phases) {
     const double tilt = radians(phase.tilt_deg);
     system.set_body_force(kDensity_kg_m3 * kGravity_m_s2 * (std::sin(tilt) * down - std::cos(tilt) * up_normal));
