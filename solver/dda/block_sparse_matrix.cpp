@@ -71,6 +71,8 @@ int BlockSparseMatrix::coupling_slot(int i, int j) const {
 }
 
 void BlockSparseMatrix::add_coupling(int slot, int i, int j, const Mat6& m_ij) {
+  if (slot < 0 || slot >= static_cast<int>(slots_.size()))
+    throw std::logic_error("block pair (" + std::to_string(i) + ", " + std::to_string(j) + ") has no slot in K's pattern");
   const Slot& s = slots_[slot];
   double* values = matrix_.valuePtr();
   const int* outer = matrix_.outerIndexPtr();

@@ -215,8 +215,7 @@ class BlockSystem {
   /// the activation tolerance (seed 2.3 vi); std::nullopt otherwise.
   std::optional<VertexEdgeSpring> vertex_vertex_spring(const Contact& c, const Eigen::VectorXd& d,
                                                        double& max_penetration) const;
-  /// Shear reference of a spring at `fraction` of the trial displacement d.
-  void reset_shear_reference(VertexEdgeSpring& s, const Eigen::VectorXd& d, double fraction = 1.0) const;
+  void reset_shear_reference(VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   Vec2 displaced(int block, const Vec2& p, const Eigen::VectorXd& d) const;
 
   mesh::Mesh mesh_;

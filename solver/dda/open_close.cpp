@@ -20,13 +20,11 @@ Vec2 BlockSystem::displaced(int block, const Vec2& p, const Eigen::VectorXd& d) 
   return p + displacement_matrix(p, moments_[block].centroid) * d.segment<6>(6 * block);
 }
 
-void BlockSystem::reset_shear_reference(VertexEdgeSpring& s, const Eigen::VectorXd& d, double fraction) const {
-  // New reference = where the corner projects on the edge at `fraction` of the trial
-  // displacement: no shear at locking.
-  auto at = [&](int block, const Vec2& p) { return Vec2(p + fraction * (displaced(block, p, d) - p)); };
-  const Vec2 p1 = at(s.vertex_block, corner(s.vertex_block, s.vertex_corner));
-  const Vec2 p2 = at(s.edge_block, corner(s.edge_block, s.edge_corner));
-  const Vec2 p3 = at(s.edge_block, blocks_.next_corner(s.edge_block, s.edge_corner));
+void BlockSystem::reset_shear_reference(VertexEdgeSpring& s, const Eigen::VectorXd& d) const {
+  // New reference = where the corner projects on the edge now: no shear at locking.
+  const Vec2 p1 = displaced(s.vertex_block, corner(s.vertex_block, s.vertex_corner), d);
+  const Vec2 p2 = displaced(s.edge_block, corner(s.edge_block, s.edge_corner), d);
+  const Vec2 p3 = displaced(s.edge_block, blocks_.next_corner(s.edge_block, s.edge_corner), d);
   // Not clamped to the edge: a corner that closes just beyond the end of the edge (a
   // joint end after opening) would otherwise start with a shear offset.
   s.reference_ratio = (p1 - p2).dot(p3 - p2) / (p3 - p2).squaredNorm();
@@ -88,12 +86,9 @@ std::optional<ContactChange> BlockSystem::open_close_change(int ci, const Contac
         return ContactChange{ci, ContactState::sliding, false, t.shear_N >= 0.0 ? 1.0 : -1.0};
       break;
     case ContactState::sliding: {
-      // Slip of this step, in the sense of the friction force; reversal re-locks. (Slip
-      // since locking would let a contact whose driving shear fell below the limit be
-      // pulled back by its own friction until the whole slip was undone.)
+      // Slip since locking, in the sense of the friction force; reversal re-locks.
       double slip = 0.0;
-      for (int k = 0; k < c.n_springs; ++k)
-        slip += 1.0 / c.n_springs * (spring_shear(c.springs[k], d) - c.springs[k].shear0);
+      for (int k = 0; k < c.n_springs; ++k) slip += 1.0 / c.n_springs * spring_shear(c.springs[k], d);
       if (t.normal_N > 0.0) return ContactChange{ci, ContactState::open};
       if (c.joint >= 0 && slip * c.friction_sign < 0.0) return ContactChange{ci, ContactState::locked};
       break;
@@ -161,27 +156,23 @@ void BlockSystem::apply_change(const ContactChange& ch, const Eigen::VectorXd& d
     if (!c.ever_active) {  // first activation: its block pair joins K's pattern
       contacts_.add_coupling(c.block_a, c.block_c);
       c.ever_active = true;
+    } else {
+      // Activated again: the pair is in the pattern already, so no rebuild will give the
+      // new spring its slot (it had none: an out-of-range write into K followed).
+      c.springs[0].slot = stiffness_.coupling_slot(c.springs[0].vertex_block, c.springs[0].edge_block);
     }
     c.vertex_vertex_active = true;
     c.friction_sign = 0.0;
     ++stats.vertex_vertex_activations;
   }
   if (c.joint < 0 && ch.to == ContactState::open) c.vertex_vertex_active = false;
-  // A joint contact that closes takes its shear reference at the trial (no shear at
-  // closing; where the faces met within the step is an open item, docs/design_notes.md
-  // section 11). A sliding contact whose slip of the step reversed locks where the step
-  // began.
-  double fraction = 1.0;
-  if (c.joint >= 0 && c.state == ContactState::sliding && ch.to == ContactState::locked) {
-    fraction = 0.0;  // its slip reversed during the step: it locks where the step began
-  }
   c.state = ch.to;
   for (int k = 0; k < c.n_springs; ++k) {
     auto& s = c.springs[k];
     if (ch.to == ContactState::open) {
       s.normal_multiplier_N = s.shear_multiplier_N = 0.0;
     } else {
-      reset_shear_reference(s, d, fraction);  // slip and shear are measured from the closing point
+      reset_shear_reference(s, d);  // slip and shear are measured from the closing point
       linearise_spring(s);
     }
   }
