@@ -112,7 +112,7 @@ int HydroMechanicalCoupling::update_states(const dda::BlockSystem& system) {
   const auto& joints = system.mesh().joints;
   for (int j = 0; j < static_cast<int>(joints.size()); ++j) {
     for (int end = 0; end < 2; ++end) {
-      if (system.contacts()[2 * j + end].state != dda::ContactState::open) continue;
+      if (system.joint_end_state(j, end) != dda::ContactState::open) continue;
       const int point = end == 0 ? joints[j].point_p : joints[j].point_q;
       if (!pressurised_[point]) continue;
       if (network_.wet(j)) ++changes;

@@ -159,6 +159,8 @@ class BlockSystem {
   const std::vector<Contact>& contacts() const { return contacts_.all(); }
   /// Contacts of a joint: indices of its end at p and at q.
   std::array<int, 2> joint_contacts(int joint) const { return {2 * joint, 2 * joint + 1}; }
+  /// Contact state of a joint's end 0 (at point p) or 1 (at point q).
+  ContactState joint_end_state(int joint, int end) const { return contacts_.all()[joint_contacts(joint)[end]].state; }
   /// The joint's other end or another joint contact at its point is open (seed 2.3 i).
   bool has_open_neighbour(int contact) const { return contacts_.has_open_neighbour(contact); }
   /// Current corner position of a block.

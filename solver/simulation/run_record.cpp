@@ -12,7 +12,7 @@ StepContext make_step_context(const Model& model, int step, double time_s, const
   const mesh::Mesh& m = system.mesh();
   for (std::size_t j = 0; j < m.joints.size(); ++j)
     for (int end = 0; end < 2; ++end) {
-      c.open_joint_ends += system.contacts()[2 * j + end].state == dda::ContactState::open;
+      c.open_joint_ends += system.joint_end_state(static_cast<int>(j), end) == dda::ContactState::open;
       c.max_aperture_m = std::max(c.max_aperture_m, system.joint_gap(static_cast<int>(j), end));
     }
   const fluid::FlowNetwork* flow = model.flow.get();
@@ -23,7 +23,7 @@ StepContext make_step_context(const Model& model, int step, double time_s, const
     if (!flow->wetted(j)) continue;
     ++c.wetted_joints;
     for (int end = 0; end < 2; ++end) {
-      if (system.contacts()[2 * j + end].state != dda::ContactState::open) continue;
+      if (system.joint_end_state(j, end) != dda::ContactState::open) continue;
       const Vec2 r = m.points[end == 0 ? m.joints[j].point_p : m.joints[j].point_q] - origin;
       c.open_xmin_m = std::min(c.open_xmin_m, r.x()), c.open_xmax_m = std::max(c.open_xmax_m, r.x());
       c.open_ymin_m = std::min(c.open_ymin_m, r.y()), c.open_ymax_m = std::max(c.open_ymax_m, r.y());
