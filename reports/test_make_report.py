@@ -20,6 +20,7 @@ sys.path.insert(0, str(HERE))
 
 import make_benchmarks  # noqa: E402
 import make_report  # noqa: E402
+import source_state  # noqa: E402
 
 PLOT_OK = """\
 import json, sys
@@ -275,7 +276,7 @@ class MakeReportTest(unittest.TestCase):
         md = self.report("--readme", str(readme))
         self.assertIn("- README summary: `README.md` section regenerated from the full-tier results", md)
         text = readme.read_text(encoding="utf-8")
-        before, section, after = make_report.split_readme(text)
+        before, section, after = source_state.split_readme(text)
         self.assertEqual(before + after, README_TEXT.replace("Hand-written text that the generator replaces.\n",
                                                              ""))
         self.assertNotIn("Hand-written", text)
@@ -326,15 +327,15 @@ class MakeReportTest(unittest.TestCase):
         self.assertEqual(readme.read_text(encoding="utf-8"), bad)
         self.assertTrue((self.out / "VALIDATION.md").is_file())   # the report is still written
         with self.assertRaisesRegex(ValueError, r"R:6: marker lines .* \(found 2 and 1\)"):
-            make_report.split_readme(README_TEXT.replace("Hand-written", make_report.README_BEGIN + "\nHand"), "R")
+            source_state.split_readme(README_TEXT.replace("Hand-written", source_state.README_BEGIN + "\nHand"), "R")
         with self.assertRaisesRegex(ValueError, r"R:8: '<!-- verified-summary:end -->' comes before"):
-            make_report.split_readme("text\n" * 7 + make_report.README_END + "\n" + make_report.README_BEGIN + "\n",
+            source_state.split_readme("text\n" * 7 + source_state.README_END + "\n" + source_state.README_BEGIN + "\n",
                                      "R")
 
     def test_project_readme_has_markers(self):
         """scripts/verify rewrites this section: the markers must be usable."""
         text = (HERE.parent / "README.md").read_text(encoding="utf-8")
-        before, section, after = make_report.split_readme(text)
+        before, section, after = source_state.split_readme(text)
         self.assertIn("## Two commands", after)
 
     # ------------------------------------------------------------------ provenance
@@ -395,22 +396,22 @@ class MakeReportTest(unittest.TestCase):
                     return status
                 if args[0] == "show" and args[1] == "HEAD:README.md":
                     return README_TEXT
-                raise make_report.GitError(f"unexpected git {args}")
+                raise source_state.GitError(f"unexpected git {args}")
             return git
 
         generated = [top / "reports" / "VALIDATION.md", top / "reports" / "figures"]
         clean = ("?? reports/VALIDATION.md\0 M reports/figures/a.png\0?? build/x.o\0?? build-asan/y\0"
                  " M README.md\0")
-        with mock.patch.object(make_report, "git", fake(clean)):
-            prov = make_report.git_state(top, generated, readme)
+        with mock.patch.object(source_state, "git", fake(clean)):
+            prov = source_state.git_state(top, generated, readme)
         self.assertEqual((prov.commit, prov.changed, prov.clean), ("abc1234", [], True))
         self.assertEqual(prov.commit_line(), "`abc1234`; working tree clean (the report's own files and "
                                              "build directories not counted)")
         self.assertEqual(prov.short(), "commit `abc1234`")
 
         dirty = clean + "R  solver/new name.cpp\0solver/old.cpp\0 M reports/make_report.py\0"
-        with mock.patch.object(make_report, "git", fake(dirty)):
-            prov = make_report.git_state(top, generated, readme)
+        with mock.patch.object(source_state, "git", fake(dirty)):
+            prov = source_state.git_state(top, generated, readme)
         self.assertEqual(prov.changed, ["reports/make_report.py", "solver/new name.cpp"])
         self.assertFalse(prov.clean)
         self.assertEqual(prov.commit_line(), "`abc1234`; working tree **not clean**: 2 uncommitted paths "
@@ -418,9 +419,9 @@ class MakeReportTest(unittest.TestCase):
         self.assertEqual(prov.short(), "commit `abc1234` with uncommitted changes")
 
         def no_repo(source_dir, *args):
-            raise make_report.GitError("git rev-parse: fatal: not a git repository")
-        with mock.patch.object(make_report, "git", no_repo):
-            prov = make_report.git_state(top, generated, readme)
+            raise source_state.GitError("git rev-parse: fatal: not a git repository")
+        with mock.patch.object(source_state, "git", no_repo):
+            prov = source_state.git_state(top, generated, readme)
         self.assertIsNone(prov.clean)
         self.assertEqual(prov.commit_line(), "unknown: git rev-parse: fatal: not a git repository; "
                                              "whether the working tree was clean is unknown")
