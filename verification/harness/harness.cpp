@@ -284,6 +284,12 @@ YAML::Node effective_check(const Study& s, const YAML::Node& node, const Variant
   return node;
 }
 
+/// The variant was built and its run stopped with an error whose message contains
+/// `stop` (an expected_stop; never true for an empty one).
+bool stopped_with(const VariantOutcome& v, const std::string& stop) {
+  return !stop.empty() && v.run.built && !v.run.completed && v.run.message.find(stop) != std::string::npos;
+}
+
 /// The check `original` for one variant (v) or for the study (v null), or nothing if it
 /// does not apply to this variant or tier.
 std::optional<Check> make_check(const Study& s, const YAML::Node& original, const VariantOutcome* v,
@@ -319,8 +325,7 @@ std::optional<Check> make_check(const Study& s, const YAML::Node& original, cons
     study_error(s, node["expected_stop"], "expected_stop names the error of an expected failure (expected: fail)");
   if (v) {
     c.run_completed = v->run.completed;
-    c.stopped_as_expected = v->run.built && !v->run.completed && !expected_stop.empty() &&
-                            v->run.message.find(expected_stop) != std::string::npos;
+    c.stopped_as_expected = stopped_with(*v, expected_stop);
   }
   const std::string gating = node["gating"] ? node["gating"].as<std::string>() : "false";
   c.gating = gating == "true" || gating == study.tier;
@@ -367,7 +372,7 @@ Check completion_check(const VariantOutcome& v) {
     const std::string& stop = v.variant().text("expected_stop");
     c.expected = "fail";
     c.run_completed = v.run.completed;
-    c.stopped_as_expected = v.run.built && !v.run.completed && v.run.message.find(stop) != std::string::npos;
+    c.stopped_as_expected = stopped_with(v, stop);
     c.note = "expected to stop with \"" + stop + "\"" + (v.run.message.empty() ? "" : ": " + v.run.message);
   }
   return c;
