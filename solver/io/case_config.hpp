@@ -51,6 +51,8 @@ struct JointConfig {
   std::optional<double> fracture_toughness_Pa_sqrt_m;
   double cohesion_Pa = 0.0;
   double friction_angle_deg = 30.0;
+  /// Hydraulic width w0 [m] a closed joint keeps for flow (0: intact rock, no flow until it opens).
+  double hydraulic_width_m = 0.0;
   bool breakable = true;
   /// "all" or "inner": only joints between two blocks of domain.inner may break
   /// (fracture overrides still apply).
@@ -70,6 +72,9 @@ struct FractureConfig {
   std::optional<double> fracture_toughness_Pa_sqrt_m;  ///< K_IC; the item's own T0 or K_IC wins over `joints`
   std::optional<double> cohesion_Pa;
   std::optional<double> friction_angle_deg;
+  /// Hydraulic width w0 of its joints while mechanically closed (seed Table 5.1: 1 um for
+  /// natural fractures): fluid invades them through it; unset: joints.hydraulic_width.
+  std::optional<double> hydraulic_width_m;
   std::optional<double> pressure_Pa;  ///< prescribed fluid pressure on its joints
   /// Initially open joints that start filled with fluid (at zero pressure) and join the
   /// flow network from t = 0 (seed 3.2: the joints at the injection point).

@@ -138,6 +138,8 @@ inline constexpr double kMaxStress = 1e10;           ///< Pa: stresses and press
 /// Pa (and Pa m^0.5 for a toughness): up to a modulus, so "a strength that never acts"
 /// can still be written.
 inline constexpr double kMaxStrength = 1e13;
+/// m: hydraulic width w0 of closed joints (a 1 cm gap is no longer a closed joint)
+inline constexpr double kMaxHydraulicWidth = 1e-2;
 inline constexpr double kMaxBodyForce = 1e7;         ///< N/m^3: 1000 g in rock
 inline constexpr double kMaxPointForce = 1e12;       ///< N/m: kMaxStress over 100 m
 inline constexpr double kMaxStiffnessFactor = 1e6;   ///< contact springs / max E

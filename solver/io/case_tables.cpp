@@ -147,6 +147,10 @@ const Table<JointConfig>& joint_table() {
               &JointConfig::cohesion_Pa, zero_to(kMaxStrength)),
        number({"friction_angle", "deg", "Table 3.1: phi = 30 deg", "friction angle phi"},
               &JointConfig::friction_angle_deg, interval(0, false, 90, true)),
+       number({"hydraulic_width", "m", "Table 5.1: natural fracture w0 = 1 um",
+               "w0: width through which fluid flows along a mechanically closed joint (the hydraulic width "
+               "is the opening plus w0); 0: fluid enters a joint only once it opens"},
+              &JointConfig::hydraulic_width_m, zero_to(kMaxHydraulicWidth)),
        boolean({"breakable", "", "§2.3", "false: intact bonds never break"},
                &JointConfig::breakable),
        choice({"breakable_region", "", "§3.4: fracturing in the inner domain only",
@@ -226,6 +230,10 @@ const Table<FractureConfig>& fracture_table() {
                         "friction angle of its joints"},
                        &FractureConfig::friction_angle_deg, interval(0, false, 90, true),
                        "joints.friction_angle"),
+       optional_number({"hydraulic_width", "m", "Table 5.1: natural fracture w0 = 1 um",
+                        "w0 of its joints: fluid invades them through this width while they are closed"},
+                       &FractureConfig::hydraulic_width_m, zero_to(kMaxHydraulicWidth),
+                       "joints.hydraulic_width"),
        optional_number({"pressure", "Pa", "§3.1: 9.81 MPa",
                         "fluid pressure prescribed on the faces of its open joints: from t = 0 with "
                         "initially_open: true; without it only on joints that break open during the run, so "

@@ -23,6 +23,9 @@ struct JointProperties {
   std::optional<double> fracture_toughness_Pa_sqrt_m;
   double cohesion_Pa = 0.0;           ///< C0, Mohr-Coulomb cohesion of the bond
   double friction_angle_rad = 0.0;    ///< phi
+  /// w0: width through which fluid flows while the joint is mechanically closed; the
+  /// hydraulic width is the mechanical opening plus w0 (seed 5.2, Table 5.1) [m]
+  double hydraulic_width_m = 0.0;
   bool initially_open = false;        ///< bond already broken at t = 0 (initial fracture)
   bool natural = false;               ///< belongs to a natural (pre-existing) fracture
   bool breakable = true;              ///< false: the bond never fails ("may not break")

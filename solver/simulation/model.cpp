@@ -63,6 +63,7 @@ mesh::JointProperties default_joint_properties(const io::CaseConfig& c) {
   p.fracture_toughness_Pa_sqrt_m = c.joints.fracture_toughness_Pa_sqrt_m;
   p.cohesion_Pa = c.joints.cohesion_Pa;
   p.friction_angle_rad = c.joints.friction_angle_deg * std::numbers::pi / 180.0;
+  p.hydraulic_width_m = c.joints.hydraulic_width_m;
   p.breakable = c.joints.breakable;
   return p;
 }
@@ -99,6 +100,7 @@ std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c) {
       if (fr.fracture_toughness_Pa_sqrt_m) p.fracture_toughness_Pa_sqrt_m = fr.fracture_toughness_Pa_sqrt_m;
       if (fr.cohesion_Pa) p.cohesion_Pa = *fr.cohesion_Pa;
       if (fr.friction_angle_deg) p.friction_angle_rad = *fr.friction_angle_deg * std::numbers::pi / 180.0;
+      if (fr.hydraulic_width_m) p.hydraulic_width_m = *fr.hydraulic_width_m;
       if (fr.pressure_Pa) p.prescribed_pressure_Pa = *fr.pressure_Pa;
     }
   }
