@@ -38,13 +38,7 @@ std::vector<dda::ContactChange> merge_failures(const std::vector<dda::ContactCha
 
 CoupledStep::CoupledStep(dda::BlockSystem& mechanics, std::vector<FluidLoadModel*> fluids,
                          fracture::FractureRules rules, bool trace_cuts)
-    : mechanics_(mechanics), fluids_(std::move(fluids)), rules_(rules), trace_cuts_(trace_cuts) {
-  const auto& joints = mechanics_.mesh().joints;
-  bond_strength_.reserve(joints.size());
-  const auto& points = mechanics_.mesh().points;
-  for (const auto& joint : joints)
-    bond_strength_.push_back(
-        fracture::bond_strength(joint.properties, (points[joint.point_q] - points[joint.point_p]).norm()));
+    : mechanics_(mechanics), fluids_(std::move(fluids)), rules_(rules), trace_cuts_(trace_cuts), bonds_(mechanics) {
   pressurised_.assign(mechanics_.mesh().points.size(), 0);
 }
 
@@ -138,27 +132,14 @@ int CoupledStep::update_contact_states(const Eigen::VectorXd& d, StepStatistics&
 }
 
 std::vector<fracture::Bond> CoupledStep::overloaded_bonds(const dda::OpenCloseTrial& trial) const {
-  const auto& contacts = mechanics_.contacts();
-  const auto& joints = mechanics_.mesh().joints;
   std::vector<fracture::Bond> bonds;
   for (int ci = 0; ci < static_cast<int>(trial.tractions.size()); ++ci) {
-    const dda::Contact& c = contacts[ci];
-    if (c.state != dda::ContactState::locked || !c.bonded) continue;
-    const auto& joint = joints[c.joint];
-    if (!joint.properties.breakable) continue;  // can never fail: no candidate
-    fracture::Bond b;
-    b.contact = ci;
-    b.point = c.point;
-    b.other_point = c.end == 0 ? joint.point_q : joint.point_p;
-    b.length_m = c.length_m;
-    b.normal_N = trial.tractions[ci].normal_N;
-    b.shear_N = trial.tractions[ci].shear_N;
-    b.strength = bond_strength_[c.joint];
-    b.breakable = joint.properties.breakable;
-    // Only a bond over a limit is a candidate; the open-neighbour search (seed 2.3 i)
-    // is then made for those few, not for every intact bond of every iteration.
+    if (!bonds_.is_candidate(mechanics_, ci)) continue;
+    fracture::Bond b = bonds_.bond(mechanics_, ci, trial.tractions[ci].normal_N, trial.tractions[ci].shear_N);
+    // Only a bond over a limit is a candidate; the neighbour searches (seed 2.3 i, 5.1)
+    // are then made for those few, not for every intact bond of every iteration.
     if (fracture::failure_mode(b, rules_.shear_failure_of_intact_joints) == fracture::FailureMode::none) continue;
-    b.open_neighbour = rules_.failure_needs_open_neighbour_and_fluid && mechanics_.has_open_neighbour(ci);
+    if (rules_.failure_needs_open_neighbour_and_fluid) BondList::add_neighbours(mechanics_, b);
     bonds.push_back(b);
   }
   return bonds;

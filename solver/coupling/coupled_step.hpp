@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/step_statistics.hpp"
+#include "coupling/bond_list.hpp"
 #include "coupling/fluid_load_model.hpp"
 #include "dda/block_system.hpp"
 #include "fracture/fracture_criteria.hpp"
@@ -31,6 +32,8 @@ class CoupledStep {
   /// Throws the last ConvergenceError if even the smallest sub-step fails (the
   /// committed state is then the last converged sub-step).
   StepStatistics advance(double dt_s, int max_step_cuts);
+  /// The intact bonds of the mechanics (also read by the load ramp).
+  const BondList& bonds() const { return bonds_; }
 
  private:
   void advance_into(double dt_s, int cuts_left, StepStatistics& stats);
@@ -50,7 +53,7 @@ class CoupledStep {
   std::vector<FluidLoadModel*> fluids_;
   fracture::FractureRules rules_;
   bool trace_cuts_;
-  std::vector<fracture::BondStrength> bond_strength_;  // per joint
+  BondList bonds_;
   std::vector<char> pressurised_;                      // union of the fluids' masks
 };
 

@@ -107,14 +107,18 @@ void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::Vec
 }
 
 int HydroMechanicalCoupling::update_states(const dda::BlockSystem& system) {
-  // Figure 2.8: a joint whose contact is open at a pressurised node takes in fluid.
+  // Figure 2.8: a joint whose contact is open at a pressurised node takes in fluid; a
+  // joint with a hydraulic width w0 (a natural fracture, seed 5.2) takes it in at a
+  // pressurised node whether open or not: the fluid invades it through w0.
   int changes = 0;
   const auto& joints = system.mesh().joints;
   for (int j = 0; j < static_cast<int>(joints.size()); ++j) {
+    if (network_.wetted_in_trial(j)) continue;
+    const bool conducts_closed = network_.fracture(j).hydraulic_width_m > 0.0;
     for (int end = 0; end < 2; ++end) {
-      if (system.joint_end_state(j, end) != dda::ContactState::open) continue;
       const int point = end == 0 ? joints[j].point_p : joints[j].point_q;
       if (!pressurised_[point]) continue;
+      if (!conducts_closed && system.joint_end_state(j, end) != dda::ContactState::open) continue;
       if (network_.wet(j)) ++changes;
       break;
     }

@@ -47,6 +47,10 @@ struct Material {
 
 struct MechanicsSettings {
   bool augmented_lagrangian = true;         ///< false: penalty method
+  /// With the Augmented Lagrangian: iterate the multipliers of intact (bonded) joint
+  /// contacts only; contacts whose bond has broken (sliding, re-closed) and vertex-vertex
+  /// contacts keep theirs fixed within the step, as penalty springs (seed 5.1).
+  bool two_tier_contacts = false;
   double normal_stiffness_N_m = 2.5e12;     ///< k_n
   double shear_stiffness_N_m = 2.5e12;      ///< k_s
   double fixed_point_stiffness_N_m = 2.5e12;
@@ -163,6 +167,8 @@ class BlockSystem {
   ContactState joint_end_state(int joint, int end) const { return contacts_.all()[joint_contacts(joint)[end]].state; }
   /// The joint's other end or another joint contact at its point is open (seed 2.3 i).
   bool has_open_neighbour(int contact) const { return contacts_.has_open_neighbour(contact); }
+  /// The joint's other end or another joint contact at its point is open or unbonded (seed 5.1).
+  bool has_failed_neighbour(int contact) const { return contacts_.has_failed_neighbour(contact); }
   /// Current corner position of a block.
   Vec2 corner(int block, int local) const { return blocks_.corner(block, local); }
   int n_corners(int block) const { return blocks_.n_corners(block); }
@@ -207,6 +213,8 @@ class BlockSystem {
   double spring_gap(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   double spring_shear(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   [[noreturn]] void throw_alm_limit(double error, double scale) const;
+  /// The contact's multipliers are iterated (Augmented Lagrangian) rather than held (two-tier penalty).
+  bool iterated(const Contact& c) const { return !settings_.two_tier_contacts || (c.joint >= 0 && c.bonded); }
   // open_close.cpp
   ContactTraction trial_traction(const Contact& c, const Eigen::VectorXd& d, StepStatistics& stats) const;
   std::optional<ContactChange> open_close_change(int contact, const ContactTraction& t, const Eigen::VectorXd& d) const;

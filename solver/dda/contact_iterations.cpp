@@ -130,7 +130,7 @@ ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int i
   double change = 0.0;    // largest change of a correction since the last iteration [N]
   double mismatch = 0.0;  // largest |gap| or |shear| over the contact's length
   for (const auto& c : contacts_.all()) {
-    if (c.state == ContactState::open) continue;
+    if (c.state == ContactState::open || !iterated(c)) continue;
     const double w = 1.0 / c.n_springs;
     const double error_before = error;
     double gap = 0.0, shear = 0.0;
@@ -170,7 +170,7 @@ ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int i
     return ContactIteration::stalled;
   }
   for (auto& c : contacts_.all()) {
-    if (c.state == ContactState::open) continue;
+    if (c.state == ContactState::open || !iterated(c)) continue;
     const int ci = contacts_.index_of(c);
     for (int k = 0; k < c.n_springs; ++k) {
       c.springs[k].normal_multiplier_N += correction[2 * ci];

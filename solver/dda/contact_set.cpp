@@ -137,6 +137,18 @@ bool ContactSet::has_open_neighbour(int contact) const {
   return false;
 }
 
+bool ContactSet::has_failed_neighbour(int contact) const {
+  const Contact& c = contacts_[contact];
+  if (c.joint < 0) return false;
+  auto failed = [](const Contact& n) { return n.state == ContactState::open || !n.bonded; };
+  if (failed(contacts_[2 * c.joint + (1 - c.end)])) return true;
+  for (int k = at_point_offset_[c.point]; k < at_point_offset_[c.point + 1]; ++k) {
+    const Contact& n = contacts_[at_point_[k]];
+    if (&n != &c && failed(n)) return true;
+  }
+  return false;
+}
+
 bool ContactSet::joined_by_closed_joints(int point, int block_a, int block_c,
                                          const std::vector<ContactState>& joint_state) const {
   // Breadth-first search over the blocks around the point (at most a dozen).

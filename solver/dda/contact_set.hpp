@@ -42,6 +42,9 @@ class ContactSet {
   /// The joint's other end or another joint contact at the same point is open (the
   /// open-neighbour half of the propagation rule, seed 2.3 i).
   bool has_open_neighbour(int contact) const;
+  /// The joint's other end or another joint contact at the same point has failed: it is
+  /// open or its bond is broken (natural-fracture localisation, seed 5.1).
+  bool has_failed_neighbour(int contact) const;
   /// Blocks a and c are joined at the point by a chain of joint contacts that are
   /// closed in `joint_state` (one state per joint contact).
   bool joined_by_closed_joints(int point, int block_a, int block_c, const std::vector<ContactState>& joint_state) const;

@@ -150,13 +150,15 @@ void FlowNetwork::rebuild_trial_topology() {
     leak_volume_[fracture_node_b_[k]] += per_node;
   }
   floor_.setZero(2 * nf);
+  hydraulic_width_.setZero(2 * nf);
   for (int k = 0; k < nf; ++k) {
     const int f = trial_fractures_[k];
+    hydraulic_width_.segment<2>(2 * k).setConstant(fractures_[f].hydraulic_width_m);
     for (int end = 0; end < 2; ++end) {
       const int i = end == 0 ? fracture_node_a_[k] : fracture_node_b_[k];
       const double minimum = degree[i] >= 2 ? settings_.min_width_main_m : settings_.min_width_tip_m;
       const double closing = wetted_[f] ? (1.0 - settings_.max_closing_fraction) * aperture_[2 * f + end] : 0.0;
-      floor_[2 * k + end] = std::max(minimum, closing);
+      floor_[2 * k + end] = std::max({minimum, closing, fractures_[f].hydraulic_width_m});
     }
   }
   // Warm start from the last state of each node; a node the fluid reaches for the
@@ -213,7 +215,7 @@ void FlowNetwork::evaluate_aperture(const Eigen::VectorXd& base, const Eigen::Ma
   const int nf = static_cast<int>(trial_fractures_.size());
   // w = max(w_mechanics, floor), its corner rounded by a parabola within 1 % of the
   // floor (C1, exact outside that band) so that Newton sees a smooth mass balance.
-  out.aperture = base + s * out.pressure;
+  out.aperture = base + s * out.pressure + hydraulic_width_;
   out.slope.resize(2 * nf);
   for (int e = 0; e < 2 * nf; ++e) {
     const double band = kFloorRounding * floor_[e];

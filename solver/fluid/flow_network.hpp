@@ -27,7 +27,7 @@
 //
 // Apertures come from the mechanics as an affine model of the nodal pressures,
 // w_e(p) = base_e + S_e . p (exact for the linear block system once its contacts are
-// fixed), bounded below by the minimum widths (0.5 um inside the network, 0.1 um at
+// fixed), plus the fracture's hydraulic width w0 when it has one, bounded below by w0, by the minimum widths (0.5 um inside the network, 0.1 um at
 // tips) and by the closing limit (at most 5 % a step). Newton's method on the nodal
 // unknowns then solves the coupled problem without stabilisation constants. Where it
 // stalls (a closed new tip whose own pressure opens the fracture behind it makes the
@@ -74,6 +74,12 @@ struct FlowSettings {
 struct Fracture {
   int point_p = -1, point_q = -1;
   double length_m = 0.0;
+  /// w0: the width through which fluid flows while the fracture is mechanically closed
+  /// (a natural fracture, seed 5.2 and Table 5.1). Its hydraulic width, which stores
+  /// the fluid and conducts it, is the mechanical opening plus w0, and never less than
+  /// w0; such a fracture takes in fluid as soon as one of its ends is pressurised,
+  /// open or not [m].
+  double hydraulic_width_m = 0.0;
 };
 
 struct Injection {
@@ -103,6 +109,7 @@ class FlowNetwork {
   void begin_step(double dt_s);
   /// Adds a fracture to the trial network; false if it already was in it.
   bool wet(int fracture);
+  bool wetted_in_trial(int fracture) const { return trial_wetted_[fracture] != 0; }
   /// Trial network: wetted fractures (ends 2k, 2k+1 of the aperture model are the
   /// ends at point_p and point_q of trial_fractures()[k]) and its nodes.
   const std::vector<int>& trial_fractures() const { return trial_fractures_; }
@@ -227,6 +234,7 @@ class FlowNetwork {
   std::vector<int> fracture_node_a_, fracture_node_b_;   // per trial fracture: node indices
   Eigen::VectorXd old_mass_, injected_, leak_volume_;    // per trial node
   Eigen::VectorXd floor_;                                // per trial end: lower bound of the aperture
+  Eigen::VectorXd hydraulic_width_;                      // per trial end: w0 of its fracture
   Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_;
   Eigen::VectorXd fill_scale_;                           // per trial node: P of the fill state [Pa]
   std::vector<double> point_state_;                      // per point: pressure [Pa] if full, else fill fraction - 1

@@ -21,7 +21,7 @@ BondStrength bond_strength(const mesh::JointProperties& p, double joint_length_m
 FailureMode failure_mode(const Bond& b, bool shear_failure_of_intact_joints) {
   if (b.normal_N > b.strength.tensile_strength_Pa * b.length_m) return FailureMode::tension;
   const double friction_limit = std::max(-b.normal_N, 0.0) * b.strength.tan_friction;
-  if (shear_failure_of_intact_joints && std::abs(b.shear_N) > b.strength.cohesion_Pa * b.length_m + friction_limit)
+  if ((shear_failure_of_intact_joints || b.natural) && std::abs(b.shear_N) > b.strength.cohesion_Pa * b.length_m + friction_limit)
     return FailureMode::shear;
   return FailureMode::none;
 }
@@ -29,6 +29,7 @@ FailureMode failure_mode(const Bond& b, bool shear_failure_of_intact_joints) {
 bool may_fail(const Bond& b, const std::vector<char>& pressurised, const FractureRules& rules) {
   if (!b.breakable) return false;
   if (!rules.failure_needs_open_neighbour_and_fluid) return true;
+  if (b.natural) return pressurised[b.point] || b.failed_neighbour;
   if (!pressurised[b.point] && !pressurised[b.other_point]) return false;
   return b.open_neighbour;
 }
@@ -68,7 +69,7 @@ namespace hfdda::fracture {
 
 double failure_margin_N(const Bond& b, bool shear_failure_of_intact_joints) {
   const double tension = b.strength.tensile_strength_Pa * b.length_m - b.normal_N;
-  if (!shear_failure_of_intact_joints) return tension;
+  if (!shear_failure_of_intact_joints && !b.natural) return tension;
   const double shear = b.strength.cohesion_Pa * b.length_m + std::max(-b.normal_N, 0.0) * b.strength.tan_friction -
                        std::abs(b.shear_N);
   return std::min(tension, shear);

@@ -10,7 +10,8 @@
 //                     toughness K_IC becomes T0 = K_IC / sqrt(pi L / 2) from the
 //                     joint's length L (seed eq. 4.13)
 //   failure_mode()    the criterion: Rankine tension, else Mohr-Coulomb shear
-//   may_fail()        eligibility, seed 2.3 (i)
+//   may_fail()        eligibility, seed 2.3 (i) for rock bonds, seed 5.1 for natural
+//                     fractures (failure localised at their tip)
 //   most_stressed()   selection among the tension failures, seed 2.3 (iii)
 
 #include <cstdint>
@@ -54,17 +55,28 @@ struct Bond {
   double shear_N = 0.0;             ///< trial shear force [N per m thickness]
   BondStrength strength;
   bool breakable = true;            ///< false: the bond never fails
+  /// Part of a natural fracture (seed 5.1): it may fail in shear whatever
+  /// FractureRules::shear_failure_of_intact_joints says, under the natural-fracture
+  /// localisation of may_fail().
+  bool natural = false;
   bool open_neighbour = false;      ///< the joint's other end or a joint contact at `point` is open
+  /// The joint's other end or a joint contact at `point` has failed: open, or its bond
+  /// broken (sliding or re-closed). Natural fractures only (seed 5.1).
+  bool failed_neighbour = false;
 };
 
 enum class FailureMode : std::uint8_t { none, tension, shear };
 
 /// The limit the bond's forces exceed: tension N > T0 Lc first; else, if shear failure
-/// of intact joints is on, |S| > C0 Lc + max(-N, 0) tan phi.
+/// of intact joints is on or the bond is natural, |S| > C0 Lc + max(-N, 0) tan phi.
 FailureMode failure_mode(const Bond& bond, bool shear_failure_of_intact_joints);
 
-/// Seed 2.3 (i): breakable and, if the rule is on, next to an open contact and to a
-/// pressurised point (at either end of its joint).
+/// Breakable and, if FractureRules::failure_needs_open_neighbour_and_fluid is on:
+///  - a rock bond (seed 2.3 i): next to an open contact and to a pressurised point (at
+///    either end of its joint);
+///  - a natural-fracture bond (seed 5.1): at a pressurised point, or next to a contact
+///    that has already failed (open or sliding), so that a natural fracture fails from
+///    its tip on rather than along its whole length at once.
 bool may_fail(const Bond& bond, const std::vector<char>& pressurised_points, const FractureRules& rules);
 
 /// Seed 2.3 (iii): of the tension failures only the most stressed fails, with all

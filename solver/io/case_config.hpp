@@ -191,6 +191,8 @@ struct ContactConfig {
   double shear_stiffness_factor = 100.0;   ///< k_s = factor * max E
   double vertex_vertex_activation_m = 1.0e-6;  ///< seed 2.3 (vi)
   double fixed_point_stiffness_factor = 100.0;  ///< fixed-point penalty = factor * max E
+  /// ALM on intact joint contacts only, penalty on broken ones (seed 5.1); see docs/case_file.md.
+  bool two_tier = false;
 };
 
 enum class AnalysisKind { static_analysis, dynamic_analysis };
@@ -214,6 +216,9 @@ struct NumericsConfig {
 struct TimeConfig {
   double dt_s = 1.0;
   double end_time_s = 1.0;
+  /// "none", or "fracture_at_edge": the run ends after the first step in which a broken
+  /// joint touches the boundary of domain.inner (a laboratory block: the fluid escapes).
+  std::string stop_when = "none";
 };
 
 struct OutputConfig {

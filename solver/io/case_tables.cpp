@@ -385,7 +385,12 @@ const Table<ContactConfig>& contact_table() {
                "fixed-point spring / max E"},
               &ContactConfig::fixed_point_stiffness_factor,
               interval(kMinStiffnessFactor, false, kMaxStiffnessFactor, false),
-              "below 1 the spring is softer than the rock it holds")}};
+              "below 1 the spring is softer than the rock it holds"),
+       boolean({"two_tier", "", "§5.1: ALM on unbroken joints, penalty on sliding and re-closed contacts",
+                "with method alm: iterate the multipliers of intact joint contacts only; contacts whose bond "
+                "broke (sliding, closed again) and vertex-vertex contacts keep theirs fixed within a step, "
+                "as penalty springs"},
+               &ContactConfig::two_tier)}};
   return table;
 }
 
@@ -445,7 +450,12 @@ const Table<TimeConfig>& time_table() {
        number({"end_time", "s", "§3.1: 2 steps; Table 4.1: 10 s; Table 5.3: 1 hr",
                "simulated time"},
               &TimeConfig::end_time_s, positive_up_to(kMaxTime),
-              ">= time.dt, a whole number of steps of time.dt, at most 1e7 steps")}};
+              ">= time.dt, a whole number of steps of time.dt, at most 1e7 steps"),
+       choice({"stop_when", "", "§5.2: a laboratory block, whose fluid escapes at its edge",
+               "none: run to end_time; fracture_at_edge: end after the first step in which a broken joint "
+               "touches the boundary of domain.inner (the edge of the block being fractured)"},
+              &TimeConfig::stop_when,
+              Choices<std::string>{{"none", "none"}, {"fracture_at_edge", "fracture_at_edge"}})}};
   return table;
 }
 

@@ -35,8 +35,10 @@ bool belongs_to(const std::string& fracture_name, const std::vector<std::string>
 }  // namespace
 
 LoadRamp::LoadRamp(const io::CaseConfig& config, const dda::BlockSystem& system,
-                   const std::vector<int>& fracture_of_joint, bool shear_failure_of_intact_joints)
+                   const std::vector<int>& fracture_of_joint, const coupling::BondList& bonds,
+                   bool shear_failure_of_intact_joints)
     : config_(*config.load_ramp),
+      bonds_(bonds),
       dt_s_(config.time.dt_s),
       shear_failure_(shear_failure_of_intact_joints),
       uniform_(config.load_ramp->history.empty()) {
@@ -76,22 +78,15 @@ double LoadRamp::next_level() {
 
 std::vector<double> LoadRamp::margins(const dda::BlockSystem& system) const {
   const auto& contacts = system.contacts();
-  const auto& joints = system.mesh().joints;
   std::vector<double> m;
   m.reserve(bond_contacts_.size());
-  const auto& points = system.mesh().points;
   for (int ci : bond_contacts_) {
     if (!contacts[ci].bonded) {  // broken since: no limit left to reach
       m.push_back(std::numeric_limits<double>::infinity());
       continue;
     }
-    fracture::Bond b;
-    b.length_m = contacts[ci].length_m;
-    std::tie(b.normal_N, b.shear_N) = system.contact_forces(ci);
-    const mesh::Joint& joint = joints[contacts[ci].joint];
-    // The undeformed joint length, as the coupled step uses it (toughness input, eq. 4.13).
-    b.strength = fracture::bond_strength(joint.properties, (points[joint.point_q] - points[joint.point_p]).norm());
-    m.push_back(fracture::failure_margin_N(b, shear_failure_));
+    const auto [normal_N, shear_N] = system.contact_forces(ci);
+    m.push_back(fracture::failure_margin_N(bonds_.bond(system, ci, normal_N, shear_N), shear_failure_));
   }
   return m;
 }

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "coupling/bond_list.hpp"
 #include "dda/block_system.hpp"
 #include "io/case_config.hpp"
 
@@ -49,8 +50,9 @@ struct LoadRampOutcome {
 class LoadRamp {
  public:
   /// `fracture_of_joint`: index into config.fractures per joint (-1: none).
+  /// `bonds`: the bond list of the model's coupled step (must outlive the ramp).
   LoadRamp(const io::CaseConfig& config, const dda::BlockSystem& system, const std::vector<int>& fracture_of_joint,
-           bool shear_failure_of_intact_joints);
+           const coupling::BondList& bonds, bool shear_failure_of_intact_joints);
 
   /// True while there is a level to solve and the stop condition is not met.
   bool has_next() const;
@@ -76,6 +78,7 @@ class LoadRamp {
   bool stop_condition_met(const dda::BlockSystem& system);
 
   io::LoadRampConfig config_;
+  const coupling::BondList& bonds_;
   double dt_s_;
   bool shear_failure_;
   bool uniform_;

@@ -151,7 +151,9 @@ void build_flow_network(Model& model, const io::CaseConfig& c) {
   const mesh::Mesh& m = model.system->mesh();
   std::vector<fluid::Fracture> fractures;
   fractures.reserve(m.joints.size());
-  for (const auto& j : m.joints) fractures.push_back({j.point_p, j.point_q, (m.points[j.point_q] - m.points[j.point_p]).norm()});
+  for (const auto& j : m.joints)
+    fractures.push_back(
+        {j.point_p, j.point_q, (m.points[j.point_q] - m.points[j.point_p]).norm(), j.properties.hydraulic_width_m});
   fluid::FluidProperties props;
   props.density_kg_m3 = c.fluid->density_kg_m3;
   props.bulk_modulus_Pa = c.fluid->bulk_modulus_Pa;
@@ -219,6 +221,7 @@ dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   for (const auto& m : c.materials) max_modulus = std::max(max_modulus, m.youngs_modulus_Pa);
   dda::MechanicsSettings s;
   s.augmented_lagrangian = c.contact.method == io::ContactMethod::augmented_lagrangian;
+  s.two_tier_contacts = c.contact.two_tier;
   s.normal_stiffness_N_m = c.contact.normal_stiffness_factor * max_modulus;
   s.shear_stiffness_N_m = c.contact.shear_stiffness_factor * max_modulus;
   s.fixed_point_stiffness_N_m = c.contact.fixed_point_stiffness_factor * max_modulus;
@@ -274,7 +277,6 @@ Model build_model(const io::CaseConfig& c) {
     for (int e = 0; e < static_cast<int>(m.boundary_edges.size()); ++e)
       for (const std::string& side : ramp.sides)
         if (edge_on_side(m, m.boundary_edges[e], c.domain.outer, side, tol)) system.add_ramped_boundary_stress(e, pattern);
-    model.ramp = std::make_unique<LoadRamp>(c, system, model.fracture_of_joint, c.numerics.shear_failure_of_intact_joints);
   }
 
   // Prescribed fluid pressure: on both faces of the fracture's joints and at their points.
@@ -290,6 +292,9 @@ Model build_model(const io::CaseConfig& c) {
   }
   model.step = std::make_unique<coupling::CoupledStep>(system, std::move(fluids), fracture_rules(c),
                                                        std::getenv("HFDDA_TRACE_CUTS") != nullptr);
+  if (c.load_ramp)
+    model.ramp = std::make_unique<LoadRamp>(c, system, model.fracture_of_joint, model.step->bonds(),
+                                            c.numerics.shear_failure_of_intact_joints);
   model.mesh_seconds_ms = static_cast<int>(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   return model;

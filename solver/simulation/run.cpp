@@ -15,6 +15,7 @@
 #include "simulation/field_checks.hpp"
 #include "simulation/run_record.hpp"
 #include "simulation/snapshots.hpp"
+#include "simulation/stop_conditions.hpp"
 
 namespace hfdda::simulation {
 
@@ -62,6 +63,7 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
   j["steps"] = r.steps;
   j["time_s"] = r.time_s;
   j["end_time_s"] = model.config.time.end_time_s;
+  j["stop_reason"] = r.stop_reason;
   j["dt_s"] = model.config.time.dt_s;
   j["wall_time_s"] = r.wall_seconds;
   j["mesh"] = {{"blocks", system.n_blocks()},
@@ -147,6 +149,9 @@ RunResult run(Model& model, const RunOptions& options) {
   };
   // Time stepping to end_time, or one step per load level of a load ramp.
   LoadRamp* ramp = model.ramp.get();
+  const bool stop_at_edge = time.stop_when == "fracture_at_edge";
+  const std::vector<char> edge_points =
+      stop_at_edge ? inner_boundary_points(model.system->mesh(), model.config) : std::vector<char>{};
   const int n_steps = std::max(1, static_cast<int>(std::llround(time.end_time_s / time.dt_s)));
   if (!options.restart) outputs.write(model, 0, 0.0, false);
   for (int step = result.steps + 1; ramp ? ramp->has_next() : step <= n_steps; ++step) {
@@ -166,7 +171,9 @@ RunResult run(Model& model, const RunOptions& options) {
       break;
     }
     if (ramp) ramp->after_step(*model.system, step, st.bonds_broken);
-    const bool last = ramp ? !ramp->has_next() : step == n_steps;
+    const bool at_edge = stop_at_edge && fracture_at_edge(*model.system, edge_points);
+    if (at_edge) result.stop_reason = "fracture_at_edge";
+    const bool last = at_edge || (ramp ? !ramp->has_next() : step == n_steps);
     result.steps = step;
     result.totals.accumulate(st);
     result.time_s = t;
@@ -186,6 +193,7 @@ RunResult run(Model& model, const RunOptions& options) {
     else if (!options.quiet)
       std::fprintf(stderr, "step %d/%d t=%.6g s open-close=%d alm=%d elapsed=%.3f s\n", step, shown_steps, t,
                    st.open_close_iterations, st.alm_iterations, elapsed);
+    if (at_edge) break;
     if (last) continue;
     const bool stop = options.stop_requested && options.stop_requested();
     if (stop || (options.checkpoint_every > 0 && step % options.checkpoint_every == 0)) checkpoint();
@@ -197,6 +205,7 @@ RunResult run(Model& model, const RunOptions& options) {
   }
   if (terminal) std::fprintf(stderr, "\n");
   result.completed = result.message.empty();
+  if (result.completed && result.stop_reason.empty()) result.stop_reason = ramp ? "load_ramp" : "end_time";
   if (!result.completed && !result.interrupted) outputs.write(model, result.steps, result.time_s, true);
   result.wall_seconds = wall_before + std::chrono::duration<double>(Clock::now() - start).count();
   write_summary(model, options, result);
