@@ -21,6 +21,10 @@ struct StepStatistics {
   int factorizations = 0;
   int bonds_broken = 0;
   int state_changes = 0;            ///< contact state changes applied
+  /// Changes refused to contacts caught in an open-close cycle (over max_state_flips in a
+  /// step), each resolved by the most open state it had in the step (seed 5.1).
+  int cycle_holds = 0;
+  int steps_with_cycles = 0;        ///< (sub-)steps that ended with a contact held on a cycle
   int coupled_state_changes = 0;    ///< fractures newly wetted by the fluid (outer iterations)
   int vertex_vertex_activations = 0;
   int active_vertex_vertex = 0;     ///< active at the end of the (last) step
@@ -54,6 +58,8 @@ struct StepStatistics {
     factorizations += later.factorizations;
     bonds_broken += later.bonds_broken;
     state_changes += later.state_changes;
+    cycle_holds += later.cycle_holds;
+    steps_with_cycles += later.steps_with_cycles;
     coupled_state_changes += later.coupled_state_changes;
     vertex_vertex_activations += later.vertex_vertex_activations;
     active_vertex_vertex = later.active_vertex_vertex;

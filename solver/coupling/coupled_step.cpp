@@ -95,7 +95,10 @@ Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {
     int coupled_changes = 0;
     for (FluidLoadModel* f : fluids_) coupled_changes += f->update_states(mechanics_);
     stats.coupled_state_changes += coupled_changes;
-    if (contact_changes + coupled_changes == 0) return d;
+    if (contact_changes + coupled_changes == 0) {
+      if (stats.cycle_holds > 0) stats.steps_with_cycles = 1;
+      return d;
+    }
     stiffness_changed = contact_changes > 0;
   }
   std::ostringstream msg;

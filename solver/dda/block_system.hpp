@@ -58,6 +58,9 @@ struct MechanicsSettings {
   double alm_force_tolerance = 1.0e-7;
   int max_alm_iterations = 200;
   int max_open_close_iterations = 200;
+  /// Cycle detection (seed 5.1): a contact changing state more often than this within
+  /// a step is set to the most open state it had in the step and held there.
+  int max_state_flips = 6;
   bool dynamic = false;                     ///< false: velocities reset every step (static)
 };
 

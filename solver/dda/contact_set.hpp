@@ -5,6 +5,7 @@
 // closed-joint chains); and the per-step bookkeeping (state at the start of the step,
 // flips of each contact for the cycle detection).
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -58,6 +59,9 @@ class ContactSet {
   void remember(int ci);
   /// Counts a state change of a contact in this step; returns the count so far.
   int count_flip(int contact) { return ++flips_[contact]; }
+  /// The most open state the contact has had in this step (open < sliding < locked).
+  ContactState most_open(int contact) const { return most_open_[contact]; }
+  void note_state(int contact) { most_open_[contact] = std::min(most_open_[contact], contacts_[contact].state); }
   /// The contacts and K's block pairs, for a checkpoint (dda/block_system_state.cpp).
   void save_state(BinaryWriter& out) const;
   void restore_state(BinaryReader& in);
@@ -76,6 +80,7 @@ class ContactSet {
   int n_joint_contacts_ = 0;
   std::vector<int> at_point_offset_, at_point_;  // joint contacts by point
   std::vector<int> flips_;                       // state changes of each contact within the step
+  std::vector<ContactState> most_open_;          // most open state of each contact within the step
   std::vector<std::pair<int, int>> couplings_;
   bool pattern_changed_ = false;
 };

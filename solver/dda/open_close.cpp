@@ -10,12 +10,6 @@
 
 namespace hfdda::dda {
 
-namespace {
-/// A contact flipping state this many times within one step is held in its state
-/// (cycle detection, seed 5.1) so that the open-close iterations can settle.
-constexpr int kMaxFlipsPerStep = 6;
-}  // namespace
-
 Vec2 BlockSystem::displaced(int block, const Vec2& p, const Eigen::VectorXd& d) const {
   return p + displacement_matrix(p, moments_[block].centroid) * d.segment<6>(6 * block);
 }
@@ -189,10 +183,23 @@ int BlockSystem::apply_state_changes(const Eigen::VectorXd& d, const std::vector
     Contact& c = contacts_[ch.contact];
     if (first_change_.empty()) describe_first_change(c, ch.to);
     if (ch.friction_sign != 0.0) c.friction_sign = ch.friction_sign;
-    // Cycle detection: a contact that keeps flipping keeps its state for this step.
-    if (contacts_.count_flip(ch.contact) > kMaxFlipsPerStep && !ch.breaks_bond) continue;
+    // Cycle detection (seed 5.1): a contact that keeps flipping is resolved by the most
+    // open state it has had in this step and held there for the rest of the step.
+    if (contacts_.count_flip(ch.contact) > settings_.max_state_flips && !ch.breaks_bond) {
+      ++stats.cycle_holds;
+      const ContactState most_open = contacts_.most_open(ch.contact);
+      if (c.state == most_open) continue;
+      ContactChange resolved = ch;
+      resolved.to = most_open;
+      resolved.vertex_vertex.reset();
+      if (c.joint < 0 && most_open != ContactState::open) continue;  // a vertex-vertex spring is kept as it is
+      ++applied;
+      apply_change(resolved, d, stats);
+      continue;
+    }
     ++applied;
     apply_change(ch, d, stats);
+    contacts_.note_state(ch.contact);
   }
   if (contacts_.pattern_changed()) rebuild_pattern();
   stats.state_changes += applied;

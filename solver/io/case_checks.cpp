@@ -255,10 +255,11 @@ void check_breakable_region(const CaseConfig& c, const MergedChecker& m) {
 }
 
 void check_stop_condition(const CaseConfig& c, const MergedChecker& m) {
-  if (c.time.stop_when == "fracture_at_edge" && !c.domain.inner)
-    m.fail("time.stop_when", "fracture_at_edge needs domain.inner (its boundary is the edge)");
-  if (c.time.stop_when == "fracture_at_edge" && c.load_ramp)
-    m.fail("time.stop_when", "fracture_at_edge is a stop of time stepping; a load ramp has load_ramp.stop_when");
+  if (c.time.stop_when != "fluid_at_edge") return;
+  if (!c.domain.inner) m.fail("time.stop_when", "fluid_at_edge needs domain.inner (its boundary is the edge)");
+  if (!c.fluid) m.fail("time.stop_when", "fluid_at_edge needs a `fluid` section");
+  if (c.load_ramp)
+    m.fail("time.stop_when", "fluid_at_edge is a stop of time stepping; a load ramp has load_ramp.stop_when");
 }
 
 void check_fractures_in_domain(const CaseConfig& c, const MergedChecker& m) {
@@ -354,7 +355,7 @@ const std::vector<CrossCheck>& cross_checks() {
        "overlaps `domain.outer`.",
        check_material_regions},
       {"`joints.breakable_region: inner` needs `domain.inner`.", check_breakable_region},
-      {"`time.stop_when: fracture_at_edge` needs `domain.inner` and no `load_ramp`.", check_stop_condition},
+      {"`time.stop_when: fluid_at_edge` needs `domain.inner`, a `fluid` and no `load_ramp`.", check_stop_condition},
       {"Both ends of every fracture lie in `domain.outer` (its boundary included).",
        check_fractures_in_domain},
       {"Every point-load location, fixed point, injection point and probe lies in "

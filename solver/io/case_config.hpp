@@ -202,6 +202,9 @@ struct NumericsConfig {
   double alm_force_tolerance = 1.0e-7;  ///< ALM stop: max |k g| <= tol * max |contact force|
   int max_alm_iterations = 200;
   int max_open_close_iterations = 200;
+  /// Cycle detection (seed 5.1): a contact changing state more often than this in a step
+  /// is set to its most open state of the step and held there.
+  int max_state_flips = 6;
   double tie_tolerance = 1.0e-3;        ///< seed 2.3 (iii): failures within 0.1 % split
   bool shear_failure_of_intact_joints = false;  ///< false: seed 2.3 (ii), tension first
   // Coupled hydro-mechanical step (seed 2.1, 2.4; docs/formulation.md section 4).
@@ -216,8 +219,8 @@ struct NumericsConfig {
 struct TimeConfig {
   double dt_s = 1.0;
   double end_time_s = 1.0;
-  /// "none", or "fracture_at_edge": the run ends after the first step in which a broken
-  /// joint touches the boundary of domain.inner (a laboratory block: the fluid escapes).
+  /// "none", or "fluid_at_edge": the run ends after the first step in which a joint
+  /// holding fluid touches the boundary of domain.inner (a laboratory block: the fluid escapes).
   std::string stop_when = "none";
 };
 

@@ -411,6 +411,11 @@ const Table<NumericsConfig>& numerics_table() {
        integer({"max_open_close_iterations", "", "§2.4: outer iterations",
                 "open-close iterations per time step"},
                &NumericsConfig::max_open_close_iterations, interval(1, false, kMaxIterations, false)),
+       integer({"max_state_flips", "", "§5.1: cycle detection of the open-close states",
+                "a contact that changes state more often than this within a step is set to the most open state "
+                "it had in the step (open, then sliding, then locked) and held there; such steps are counted "
+                "(history cycle_holds, summary steps_with_cycles)"},
+               &NumericsConfig::max_state_flips, interval(1, false, kMaxIterations, false)),
        number({"tie_tolerance", "-", "§2.3 (iii): 0.1 %",
                "relative difference of normal stress below which simultaneous tensile "
                "failures both break"},
@@ -452,10 +457,10 @@ const Table<TimeConfig>& time_table() {
               &TimeConfig::end_time_s, positive_up_to(kMaxTime),
               ">= time.dt, a whole number of steps of time.dt, at most 1e7 steps"),
        choice({"stop_when", "", "§5.2: a laboratory block, whose fluid escapes at its edge",
-               "none: run to end_time; fracture_at_edge: end after the first step in which a broken joint "
-               "touches the boundary of domain.inner (the edge of the block being fractured)"},
+               "none: run to end_time; fluid_at_edge: end after the first step in which a joint holding fluid "
+               "touches the boundary of domain.inner (the edge of the block being fractured); needs a `fluid`"},
               &TimeConfig::stop_when,
-              Choices<std::string>{{"none", "none"}, {"fracture_at_edge", "fracture_at_edge"}})}};
+              Choices<std::string>{{"none", "none"}, {"fluid_at_edge", "fluid_at_edge"}})}};
   return table;
 }
 

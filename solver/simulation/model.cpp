@@ -229,6 +229,7 @@ dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   s.alm_force_tolerance = c.numerics.alm_force_tolerance;
   s.max_alm_iterations = c.numerics.max_alm_iterations;
   s.max_open_close_iterations = c.numerics.max_open_close_iterations;
+  s.max_state_flips = c.numerics.max_state_flips;
   s.dynamic = c.numerics.analysis == io::AnalysisKind::dynamic_analysis;
   return s;
 }

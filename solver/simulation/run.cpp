@@ -149,7 +149,7 @@ RunResult run(Model& model, const RunOptions& options) {
   };
   // Time stepping to end_time, or one step per load level of a load ramp.
   LoadRamp* ramp = model.ramp.get();
-  const bool stop_at_edge = time.stop_when == "fracture_at_edge";
+  const bool stop_at_edge = time.stop_when == "fluid_at_edge";
   const std::vector<char> edge_points =
       stop_at_edge ? inner_boundary_points(model.system->mesh(), model.config) : std::vector<char>{};
   const int n_steps = std::max(1, static_cast<int>(std::llround(time.end_time_s / time.dt_s)));
@@ -171,8 +171,8 @@ RunResult run(Model& model, const RunOptions& options) {
       break;
     }
     if (ramp) ramp->after_step(*model.system, step, st.bonds_broken);
-    const bool at_edge = stop_at_edge && fracture_at_edge(*model.system, edge_points);
-    if (at_edge) result.stop_reason = "fracture_at_edge";
+    const bool at_edge = stop_at_edge && fluid_at_edge(*model.flow, model.system->mesh(), edge_points);
+    if (at_edge) result.stop_reason = "fluid_at_edge";
     const bool last = at_edge || (ramp ? !ramp->has_next() : step == n_steps);
     result.steps = step;
     result.totals.accumulate(st);

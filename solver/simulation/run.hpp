@@ -28,7 +28,7 @@ struct RunResult {
   bool interrupted = false; ///< stopped on request after a step, with a checkpoint
   std::string message;      ///< why it stopped, if it did not complete
   /// Completed runs: "end_time" or "load_ramp" at their end, or the time.stop_when
-  /// condition that ended them early ("fracture_at_edge").
+  /// condition that ended them early ("fluid_at_edge").
   std::string stop_reason;
   int steps = 0;            ///< steps completed
   double time_s = 0.0;      ///< simulated time reached

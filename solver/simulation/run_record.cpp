@@ -63,6 +63,10 @@ std::vector<OutputColumn> make_fixed_columns() {
        "ALM solves ended because the corrections stopped changing: a loop of closed contacts around a point "
        "whose reference points no longer close, by nanometres, after slips and rotations",
        [](const StepContext& c) { return double(c.stats.alm_stalls); }},
+      {"cycle_holds", "-",
+       "state changes refused to contacts caught in an open-close cycle (numerics.max_state_flips), each "
+       "resolved by its most open state of the step (seed 5.1); > 0: the step ended on a cycle",
+       [](const StepContext& c) { return double(c.stats.cycle_holds); }},
       {"alm_stall_mismatch", "-",
        "largest gap or shear left at a stall, over the contact's length (a stall is accepted only below 1e-6)",
        [](const StepContext& c) { return c.stats.max_alm_stall_mismatch; }},
@@ -234,6 +238,8 @@ const std::vector<SummaryField>& summary_solver_fields() {
        true},
       {"max_alm_stall_mismatch", "largest mismatch accepted at a stall",
        [](const StepStatistics& t) { return t.max_alm_stall_mismatch; }},
+      {"steps_with_cycles", "(sub-)steps that ended with a contact held on an open-close cycle",
+       [](const StepStatistics& t) { return double(t.steps_with_cycles); }, true},
       {"factorizations", "factorisations of the stiffness matrix",
        [](const StepStatistics& t) { return double(t.factorizations); }, true},
       {"bonds_broken", "bonds broken", [](const StepStatistics& t) { return double(t.bonds_broken); }, true},

@@ -20,16 +20,10 @@ std::vector<char> inner_boundary_points(const mesh::Mesh& mesh, const io::CaseCo
   return on;
 }
 
-bool fracture_at_edge(const dda::BlockSystem& system, const std::vector<char>& edge_points) {
+bool fluid_at_edge(const fluid::FlowNetwork& flow, const mesh::Mesh& mesh, const std::vector<char>& edge_points) {
   if (edge_points.empty()) return false;
-  const auto& joints = system.mesh().joints;
-  const auto& contacts = system.contacts();
-  for (int j = 0; j < static_cast<int>(joints.size()); ++j) {
-    const auto ends = system.joint_contacts(j);
-    if (contacts[ends[0]].bonded && contacts[ends[1]].bonded) continue;
-    if (joints[j].properties.initially_open) continue;  // broken from the start: not grown
-    if (edge_points[joints[j].point_p] || edge_points[joints[j].point_q]) return true;
-  }
+  for (int j = 0; j < static_cast<int>(mesh.joints.size()); ++j)
+    if (flow.wetted(j) && (edge_points[mesh.joints[j].point_p] || edge_points[mesh.joints[j].point_q])) return true;
   return false;
 }
 

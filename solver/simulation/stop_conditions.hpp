@@ -3,7 +3,8 @@
 
 #include <vector>
 
-#include "dda/block_system.hpp"
+#include "fluid/flow_network.hpp"
+#include "mesh/mesh.hpp"
 #include "io/case_config.hpp"
 
 namespace hfdda::simulation {
@@ -12,8 +13,9 @@ namespace hfdda::simulation {
 /// fractured (within 1e-9 of the domain size). Empty without domain.inner.
 std::vector<char> inner_boundary_points(const mesh::Mesh& mesh, const io::CaseConfig& config);
 
-/// time.stop_when: fracture_at_edge. A joint whose bond has broken at either end touches
-/// a point of `edge_points`: in a laboratory block the fluid would now escape (seed 5.2).
-bool fracture_at_edge(const dda::BlockSystem& system, const std::vector<char>& edge_points);
+/// time.stop_when: fluid_at_edge. A joint holding fluid touches a point of `edge_points`:
+/// in a laboratory block the fluid would now escape (seed 5.2). (Not a joint that merely
+/// broke: a critically stressed natural fracture may slip to the edge without fluid.)
+bool fluid_at_edge(const fluid::FlowNetwork& flow, const mesh::Mesh& mesh, const std::vector<char>& edge_points);
 
 }  // namespace hfdda::simulation

@@ -36,6 +36,15 @@ TEST(CaseFileErrors, UnknownKeyListsAllowedKeys) {
                     "domain.outer.zmax", "unknown key");
 }
 
+TEST(CaseFileErrors, StopAtTheEdgeNeedsAnInnerDomainAndFluid) {
+  expect_text_error("time: {dt: 1, end_time: 2, stop_when: fluid_at_edge}\nfluid: {}\n", 1, "time.stop_when",
+                    "needs domain.inner");
+  expect_text_error("domain: {inner: {xmin: -1, xmax: 1, ymin: -1, ymax: 1}}\n"
+                    "time: {dt: 1, end_time: 2, stop_when: fluid_at_edge}\n",
+                    2, "time.stop_when", "needs a `fluid` section");
+  expect_text_error("time: {dt: 1, end_time: 2, stop_when: at_edge}\n", 1, "time.stop_when", "fluid_at_edge");
+}
+
 TEST(CaseFileErrors, DuplicateKey) {
   expect_text_error("time: {dt: 1}\ntitle: a\ntime: {dt: 2}\n", 3, "time", "duplicate key");
 }

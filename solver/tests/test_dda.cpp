@@ -301,5 +301,31 @@ TEST(DdaFracture, BondFailsInTensionOnlyNextToAnOpenPressurisedJoint) {
   }
 }
 
+TEST(DdaCycles, ContactFlippingTooOftenIsHeldInItsMostOpenState) {
+  // A joint contact driven open, closed, open... within one step: after max_state_flips
+  // changes it is set to the most open state it had (open) and held there (seed 5.1),
+  // and every refused change is counted.
+  const mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
+  for (int max_flips : {2, 4}) {
+    MechanicsSettings settings = alm_settings(25e9);
+    settings.max_state_flips = max_flips;
+    BlockSystem system(m, {Material{}}, settings);
+    system.add_fixed_point({0.0, 0.0});
+    system.begin_step(1.0);
+    StepStatistics stats;
+    system.assemble_and_factorise(stats);
+    const Eigen::VectorXd d = Eigen::VectorXd::Zero(6 * system.n_blocks());
+    const int ci = system.joint_contacts(0)[0];
+    const ContactState cycle[] = {ContactState::open, ContactState::locked, ContactState::open,
+                                  ContactState::locked, ContactState::open, ContactState::locked};
+    int applied = 0;
+    for (ContactState to : cycle) applied += system.apply_state_changes(d, {ContactChange{ci, to}}, stats);
+    // The change over the limit resolves the contact to "open" (applied), the later ones are refused.
+    EXPECT_EQ(system.contacts()[ci].state, ContactState::open);
+    EXPECT_EQ(stats.cycle_holds, 6 - max_flips);
+    EXPECT_EQ(applied, max_flips + 1);
+  }
+}
+
 }  // namespace
 }  // namespace hfdda::dda

@@ -62,6 +62,24 @@ TEST(FlowNetwork, CompressibleStorageOfRigidFracture) {
   EXPECT_LT(net.mass_balance_error(), 1e-14);
 }
 
+TEST(FlowNetwork, ClosedFractureStoresAndConductsThroughItsHydraulicWidth) {
+  // A natural fracture (seed 5.2, Table 5.1: w0 = 1 um) mechanically closed (gap -0.2 um)
+  // holds fluid in the width w0, and when open by g its width is g + w0.
+  const double w0 = 1.0e-6;
+  for (double gap : {-0.2e-6, 3.0e-6}) {
+    FlowNetwork net(2, {Fracture{0, 1, 1.0, w0}}, water(), FlowSettings{});
+    net.fill_initially(0, 0.0);
+    net.add_injection({0, 1e-6, 0.0});
+    net.begin_step(1.0);
+    solve_rigid(net, gap);
+    net.commit();
+    const double width = std::max(gap, 0.0) + w0;
+    EXPECT_NEAR(net.aperture(0, 0), width, 1e-12 * width);
+    EXPECT_NEAR(net.aperture(0, 1), width, 1e-12 * width);
+    EXPECT_LT(net.volume_balance_error(), 1e-12);
+  }
+}
+
 TEST(FlowNetwork, ImplicitFlowBetweenTwoNodesMatchesClosedForm) {
   // Two nodes, incompressible-limit check with a stiff fluid: the inflow over the step
   // equals dt * eta * (p0 - p1) with eta from the cubic law (eq. 2.2).

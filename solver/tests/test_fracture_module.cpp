@@ -102,6 +102,29 @@ TEST(FractureCriteria, EligibilityNeedsBreakableOpenNeighbourAndPressure) {
   EXPECT_FALSE(may_fail(b, wet_here, free));
 }
 
+TEST(FractureCriteria, NaturalFractureFailsInShearOnlyAtItsTip) {
+  // Seed 5.1: a natural-fracture bond fails in shear even with shear failure of intact
+  // (rock) joints off, and only at a pressurised point or next to a failed contact.
+  const FractureRules rules;  // shear_failure_of_intact_joints off, localisation on
+  const std::vector<char> dry{0, 0}, wet_here{1, 0}, wet_there{0, 1};
+  Bond b = bond(-1.0e6, 1.0e6, {0.0, 0.0, std::tan(35.0 * std::numbers::pi / 180.0)});
+  b.open_neighbour = false;
+  EXPECT_EQ(failure_mode(b, false), FailureMode::none);  // rock: no shear failure
+  b.natural = true;
+  EXPECT_EQ(failure_mode(b, false), FailureMode::shear);  // |S| > N tan 35 deg
+  EXPECT_FALSE(may_fail(b, dry, rules));        // neither pressurised nor next to a failure
+  EXPECT_FALSE(may_fail(b, wet_there, rules));  // only its own point's fluid counts
+  EXPECT_TRUE(may_fail(b, wet_here, rules));
+  b.failed_neighbour = true;
+  EXPECT_TRUE(may_fail(b, dry, rules));
+  const auto failures = failing_bonds({b}, dry, rules);
+  ASSERT_EQ(failures.size(), 1u);
+  EXPECT_EQ(failures[0].mode, FailureMode::shear);
+  // Below the friction limit nothing fails, wherever it is.
+  b.shear_N = 0.5e6;
+  EXPECT_EQ(failure_mode(b, false), FailureMode::none);
+}
+
 TEST(FractureCriteria, OnlyTheMostStressedFailsWithItsTies) {
   EXPECT_TRUE(most_stressed({}, 1e-3).empty());
   EXPECT_EQ(most_stressed({1.0, 3.0, 2.0}, 1e-3), std::vector<int>({1}));

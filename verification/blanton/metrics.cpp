@@ -167,7 +167,7 @@ Metrics variant_metrics(const VariantRun& r) {
   m.numbers["natural_invaded_m"] = in.natural_invaded_m;
   m.numbers["natural_slipped_m"] = in.natural_slipped_m;
   m.numbers["rock_beyond_m"] = in.beyond_m;
-  m.numbers["stopped_at_edge"] = r.run.stop_reason == "fracture_at_edge" ? 1.0 : 0.0;
+  m.numbers["stopped_at_edge"] = r.run.stop_reason == "fluid_at_edge" ? 1.0 : 0.0;
   if (v.has("blanton_mode")) m.numbers["mode_matches"] = in.mode == mode_of_text(v.text("blanton_mode")) ? 1.0 : 0.0;
   m.json["mode"] = to_string(in.mode);
   m.json["natural_opened_m"] = in.natural_opened_m;
