@@ -53,7 +53,9 @@ struct Geometry {
   Vec2 crossing{0, 0};      ///< where the natural fracture meets the path of the hydraulic fracture
   Vec2 direction{1, 0};     ///< unit vector along the natural fracture
   double angle_deg = 0.0;   ///< approach angle to the x axis, in (0, 90]
-  double distance_m = 0.0;  ///< from the injection point to the natural fracture's line
+  /// From the injection point to where the natural fracture crosses the path (the mode
+  /// rule's length scale, README: 4 cm).
+  double distance_m = 0.0;
   /// Signed distance from the natural fracture's line, positive on the far side.
   double beyond(const Vec2& p) const {
     const Vec2 normal(direction.y(), -direction.x());
@@ -80,8 +82,7 @@ Geometry geometry_of(const io::CaseConfig& c) {
   }
   if (!found) throw std::runtime_error("the case has no natural fracture");
   g.angle_deg = std::atan2(g.direction.y(), std::abs(g.direction.x())) * 180.0 / std::numbers::pi;
-  const Vec2 normal(g.direction.y(), -g.direction.x());
-  g.distance_m = std::abs((g.injection - g.crossing).dot(normal));
+  g.distance_m = (g.crossing - g.injection).norm();
   return g;
 }
 
