@@ -10,9 +10,11 @@
 #include <cstdio>
 #include <numbers>
 #include <sstream>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
+#include "analytical/interaction_criteria.hpp"
 #include "dda/block_system.hpp"
 #include "fluid/flow_network.hpp"
 #include "harness.hpp"
@@ -180,6 +182,12 @@ Metrics variant_metrics(const VariantRun& r) {
   m.json["rock_beyond_m"] = in.beyond_m;
   m.json["distance_to_natural_m"] = g.distance_m;
   m.json["stop_reason"] = r.run.stop_reason;
+  // Net pressure at the injection point at the end of the run (Warpinski and Teufel's p - sigma_h).
+  if (r.record().rows() > 0) {
+    const double net = r.record().series("injection_pressure_Pa").back() - v.number("sigma_min_Pa");
+    m.numbers["net_pressure_Pa"] = net;
+    m.json["net_pressure_Pa"] = net;
+  }
   m.json["time_s"] = r.run.time_s;
 
   // The joints the figures draw: natural, broken, invaded (initial coordinates).
@@ -202,6 +210,66 @@ Metrics variant_metrics(const VariantRun& r) {
   m.files["joints_" + v.name + ".csv"] = joints.str();
   m.summary = std::string("mode ") + to_string(in.mode) + (v.has("blanton_mode") ? " (Blanton: " + v.text("blanton_mode") + ")" : "");
   return m;
+}
+
+/// The analytical criteria over the map (docs/interaction_criteria.md): their boundaries
+/// for criteria.csv and where the simulated modes agree with them. Warpinski and Teufel
+/// take the median net pressure of the eleven tests at the end of their runs.
+void compare_with_criteria(StudyOutcome& st) {
+  const double mu = std::tan(35.0 * std::numbers::pi / 180.0), t0 = 6.0e6, sigma_h = 5.0e6;  // Table 5.1, the map
+  std::vector<double> nets;
+  for (const VariantOutcome& o : st.variants)
+    if (o.variant().has("group") && o.variant().text("group") == "test" && o.metrics.numbers.count("net_pressure_Pa"))
+      nets.push_back(o.metrics.numbers.at("net_pressure_Pa"));
+  if (nets.empty()) return;
+  std::sort(nets.begin(), nets.end());
+  const double net = nets[nets.size() / 2];
+  const double rp = analytical::renshaw_pollard_critical_differential_stress(sigma_h, t0, mu);
+  std::ostringstream csv;
+  csv << "criterion,theta_deg,delta_sigma_MPa\n";
+  char label[128];
+  std::snprintf(label, sizeof label, "Warpinski-Teufel opening below (net %.2g MPa)", net / 1e6);
+  for (int theta = 30; theta <= 90; ++theta)
+    csv << label << ',' << theta << ','
+        << analytical::warpinski_teufel_opening_differential_stress(theta * std::numbers::pi / 180.0, net) / 1e6 << '\n';
+  std::snprintf(label, sizeof label, "Warpinski-Teufel slip below (net %.2g MPa)", net / 1e6);
+  for (int theta = 30; theta <= 90; ++theta) {
+    double boundary = kNaN;  // largest differential stress (0-20 MPa) at which it still slips
+    for (double ds = 0.0; ds <= 20e6; ds += 0.05e6)
+      if (analytical::warpinski_teufel_slips(theta * std::numbers::pi / 180.0, ds, sigma_h, net, mu, 0.0)) boundary = ds;
+    if (std::isfinite(boundary) && boundary < 20e6) csv << label << ',' << theta << ',' << boundary / 1e6 << '\n';
+  }
+  csv << "Renshaw-Pollard crossing above (90 deg)," << 90 << ',' << rp / 1e6 << '\n';
+  st.metrics.files["criteria.csv"] = csv.str();
+
+  int at_90 = 0, rp_agree = 0, map_runs = 0, wt_agree = 0;
+  nlohmann::json disagree = nlohmann::json::array();
+  for (const VariantOutcome& o : st.variants) {
+    const VariantSpec& v = o.variant();
+    if (!v.has("group") || v.text("group") != "map" || !o.metrics.json.contains("mode")) continue;
+    const std::string mode = o.metrics.json["mode"];
+    const double theta = v.number("theta_deg");
+    const double ds = v.number("sigma_max_Pa") - v.number("sigma_min_Pa");
+    ++map_runs;
+    const bool wt_opens = ds < analytical::warpinski_teufel_opening_differential_stress(theta * std::numbers::pi / 180.0, net);
+    if (wt_opens == (mode == "opening")) ++wt_agree;
+    else disagree.push_back(v.name + ": " + mode + ", Warpinski-Teufel " + (wt_opens ? "opening" : "no opening"));
+    if (theta == 90.0) {
+      ++at_90;
+      const bool rp_crosses = ds > rp;
+      if (rp_crosses == (mode == "crossing")) ++rp_agree;
+      else disagree.push_back(v.name + ": " + mode + ", Renshaw-Pollard " + (rp_crosses ? "crossing" : "no crossing"));
+    }
+  }
+  st.metrics.json["criteria"] = {{"net_pressure_Pa", net},
+                                 {"renshaw_pollard_critical_differential_stress_Pa", rp},
+                                 {"renshaw_pollard_agree", rp_agree},
+                                 {"renshaw_pollard_runs", at_90},
+                                 {"warpinski_teufel_opening_agree", wt_agree},
+                                 {"warpinski_teufel_opening_runs", map_runs},
+                                 {"disagreements", disagree}};
+  st.metrics.numbers["renshaw_pollard_agreement"] = at_90 ? double(rp_agree) / at_90 : kNaN;
+  st.metrics.numbers["warpinski_teufel_opening_agreement"] = map_runs ? double(wt_agree) / map_runs : kNaN;
 }
 
 void study_metrics(StudyOutcome& st) {
@@ -251,6 +319,7 @@ void study_metrics(StudyOutcome& st) {
   st.metrics.json["tests_wall_s"] = tests_wall_s;
   st.metrics.json["map_wall_s"] = map_wall_s;
   st.metrics.files["modes.csv"] = modes.str();
+  compare_with_criteria(st);
 }
 
 }  // namespace

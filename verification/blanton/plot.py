@@ -89,7 +89,9 @@ def main(result_dir):
     for curve in {r["criterion"] for r in rows(os.path.join(result_dir, "criteria.csv"))}:
         pts = [(float(r["theta_deg"]), float(r["delta_sigma_MPa"])) for r in rows(os.path.join(result_dir, "criteria.csv"))
                if r["criterion"] == curve and r["delta_sigma_MPa"] not in ("inf", "nan")]
-        if pts:
+        if len(pts) == 1:
+            ax.plot(*pts[0], "k*", ms=12, label=f"{curve}: {pts[0][1]:.1f} MPa")
+        elif pts:
             ax.plot(*zip(*sorted(pts)), "--", lw=1.2, label=curve)
     ax.set_xlabel("approach angle theta [deg]")
     ax.set_ylabel("differential stress sigma_max - sigma_min [MPa]")
