@@ -1,9 +1,11 @@
 // hfdda: command-line front end.
 //   hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--force | --restart]
 //   hfdda check CASE.yaml                      validate the case and build its mesh
+//   hfdda plot DIR [--times ...] [--out ...]   figures of a run directory (hfdda_plot.py)
 // Exit codes: 0 success, 1 the run stopped (no convergence), 2 bad input or usage,
 // 3 stopped by SIGINT/SIGTERM after a step, with a checkpoint to restart from.
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,6 +15,7 @@
 #include <exception>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "core/memory_policy.hpp"
@@ -27,6 +30,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--force | --restart]\n"
     "       hfdda check CASE.yaml\n"
+    "       hfdda plot DIR [--times T1,T2,...] [--out FIGDIR]\n"
     "       hfdda --help | --version\n"
     "\n"
     "run    validates CASE.yaml, builds the mesh and runs the DDA time loop, writing\n"
@@ -39,6 +43,8 @@ constexpr const char* kUsage =
     "       --restart: continue the run in DIR from its checkpoint (same case file), with\n"
     "       the same results as a run that was never stopped.\n"
     "check  validates CASE.yaml and builds its mesh without writing anything.\n"
+    "plot   draws a run directory's fracture map at the output nearest each time (default: the\n"
+    "       last) and its histories, as PNG files in FIGDIR (default DIR/figures).\n"
     "Case-file keys: docs/case_file.md. Exit: 0 ok, 1 run stopped, 2 bad input or unusable DIR,\n"
     "3 interrupted (checkpoint written).\n";
 
@@ -224,6 +230,41 @@ int run_command(int argc, char** argv, bool check_only) {
 
 }  // namespace
 
+/// `hfdda plot DIR [--times ...] [--out ...]`: runs hfdda_plot.py, found next to this
+/// executable, with Debian's Python (the one that sees python3-matplotlib).
+int plot_command(int argc, char** argv) {
+  if (argc < 3) return usage_error("plot: give the run directory");
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path script = exe.parent_path() / "hfdda_plot.py";
+  if (ec || !std::filesystem::exists(script)) {
+    std::fprintf(stderr, "hfdda: plot: %s not found (it is copied next to the hfdda binary by the build)\n",
+                 script.c_str());
+    return 2;
+  }
+  const char* python = "/usr/bin/python3";
+  if (access(python, X_OK) != 0) {
+    std::fprintf(stderr, "hfdda: plot: %s not found; install Debian's python3 and python3-matplotlib\n", python);
+    return 2;
+  }
+  std::vector<std::string> args{python, script.string()};
+  for (int i = 2; i < argc; ++i) args.emplace_back(argv[i]);
+  std::vector<char*> c_args;
+  for (std::string& a : args) c_args.push_back(a.data());
+  c_args.push_back(nullptr);
+  std::fflush(stdout);
+  const pid_t pid = fork();
+  if (pid < 0) return 2;
+  if (pid == 0) {
+    execv(python, c_args.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 2;
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) return usage_error("no command given");
   const std::string command = argv[1];
@@ -238,6 +279,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "run") return run_command(argc, argv, false);
     if (command == "check") return run_command(argc, argv, true);
+    if (command == "plot") return plot_command(argc, argv);
     return usage_error("unknown command '" + command + "'");
   } catch (const hfdda::InputError& e) {
     std::fprintf(stderr, "hfdda: input error: %s\n", e.what());

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -76,6 +77,16 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
   for (const SummaryField& f : summary_solver_fields()) {
     const double v = f.value(r.totals);
     solver[f.name] = f.integer ? nlohmann::json(static_cast<long long>(v)) : nlohmann::json(v);
+  }
+  if (!r.record.empty()) {
+    // Fractures meeting others: each length and extent at the end and its largest value.
+    nlohmann::json& fr = j["fractures"];
+    for (const char* name : {"opened_length_rock_m", "opened_length_natural_m", "invaded_length_rock_m",
+                             "invaded_length_natural_m", "slipped_length_rock_m", "slipped_length_natural_m",
+                             "open_extent_m", "invaded_extent_m"}) {
+      const std::vector<double> series = r.record.series(name);
+      fr[name] = {{"final", series.back()}, {"max", *std::max_element(series.begin(), series.end())}};
+    }
   }
   if (const fluid::FlowNetwork* flow = model.flow.get()) {
     // Both mass checks: the ledger's (closes by construction) and the volume's (independent).

@@ -16,9 +16,26 @@ StepContext make_step_context(const Model& model, int step, double time_s, const
       c.max_aperture_m = std::max(c.max_aperture_m, system.joint_gap(static_cast<int>(j), end));
     }
   const fluid::FlowNetwork* flow = model.flow.get();
-  if (!flow) return c;
-  c.inlet_point = model.injection_points.empty() ? -1 : model.injection_points.front();
+  c.inlet_point = flow && !model.injection_points.empty() ? model.injection_points.front() : -1;
   const Vec2 origin = c.inlet_point >= 0 ? m.points[c.inlet_point] : Vec2(0, 0);
+  // Lengths per joint kind and extents, for fractures meeting others (seed 5.2-5.4).
+  for (int j = 0; j < static_cast<int>(m.joints.size()); ++j) {
+    const mesh::Joint& joint = m.joints[j];
+    const int kind = joint.properties.natural ? 1 : 0;
+    const double length = (m.points[joint.point_q] - m.points[joint.point_p]).norm();
+    const bool open = system.joint_end_state(j, 0) == dda::ContactState::open ||
+                      system.joint_end_state(j, 1) == dda::ContactState::open;
+    const bool sliding = system.joint_end_state(j, 0) == dda::ContactState::sliding ||
+                         system.joint_end_state(j, 1) == dda::ContactState::sliding;
+    const bool invaded = flow && flow->wetted(j);
+    c.opened_m[kind] += open ? length : 0.0;
+    c.slipped_m[kind] += sliding ? length : 0.0;
+    c.invaded_m[kind] += invaded ? length : 0.0;
+    const double reach = std::max((m.points[joint.point_p] - origin).norm(), (m.points[joint.point_q] - origin).norm());
+    if (open) c.open_extent_m = std::max(c.open_extent_m, reach);
+    if (invaded) c.invaded_extent_m = std::max(c.invaded_extent_m, reach);
+  }
+  if (!flow) return c;
   for (int j = 0; j < flow->n_fractures(); ++j) {
     if (!flow->wetted(j)) continue;
     ++c.wetted_joints;
@@ -110,6 +127,22 @@ std::vector<OutputColumn> make_fixed_columns() {
       {"open_xmax_m", "m", "largest x" + extent, [](const StepContext& c) { return c.open_xmax_m; }},
       {"open_ymin_m", "m", "smallest y" + extent, [](const StepContext& c) { return c.open_ymin_m; }},
       {"open_ymax_m", "m", "largest y" + extent, [](const StepContext& c) { return c.open_ymax_m; }},
+      {"opened_length_rock_m", "m", "length of rock joints (not natural) with an open end",
+       [](const StepContext& c) { return c.opened_m[0]; }},
+      {"opened_length_natural_m", "m", "length of natural-fracture joints with an open end",
+       [](const StepContext& c) { return c.opened_m[1]; }},
+      {"invaded_length_rock_m", "m", "length of rock joints holding fluid",
+       [](const StepContext& c) { return c.invaded_m[0]; }},
+      {"invaded_length_natural_m", "m", "length of natural-fracture joints holding fluid (open or not)",
+       [](const StepContext& c) { return c.invaded_m[1]; }},
+      {"slipped_length_rock_m", "m", "length of rock joints with a sliding end",
+       [](const StepContext& c) { return c.slipped_m[0]; }},
+      {"slipped_length_natural_m", "m", "length of natural-fracture joints with a sliding end",
+       [](const StepContext& c) { return c.slipped_m[1]; }},
+      {"open_extent_m", "m", "largest distance of an end of an open joint from the first injection point",
+       [](const StepContext& c) { return c.open_extent_m; }},
+      {"invaded_extent_m", "m", "largest distance of an end of an invaded joint from the first injection point",
+       [](const StepContext& c) { return c.invaded_extent_m; }},
       {"mass_injected_kg", "kg", "fluid mass injected since t = 0",
        flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.injected_mass(); })},
       {"mass_stored_kg", "kg", "fluid mass stored in the joints",

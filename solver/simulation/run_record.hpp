@@ -33,6 +33,12 @@ struct StepContext {
   int wetted_joints = 0;               ///< 0 without a flow network
   int inlet_point = -1;                ///< mesh point of the first injection, -1 if none
   double open_xmin_m = 0.0, open_xmax_m = 0.0, open_ymin_m = 0.0, open_ymax_m = 0.0;
+  /// Lengths of joints per kind (0 rock, 1 natural: mesh::JointProperties::natural) [m]:
+  /// with an open end, holding fluid (invaded), with a sliding end.
+  double opened_m[2] = {0.0, 0.0}, invaded_m[2] = {0.0, 0.0}, slipped_m[2] = {0.0, 0.0};
+  /// Largest distance from the first injection point (else the origin) of an end of an
+  /// open joint, and of an invaded joint [m].
+  double open_extent_m = 0.0, invaded_extent_m = 0.0;
 };
 
 /// The context of a committed step (derived quantities computed here, once).

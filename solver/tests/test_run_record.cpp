@@ -2,6 +2,8 @@
 // RunRecord and its agreement with history.csv, and the README's column table.
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 #include <unistd.h>
 
 #include <filesystem>
@@ -151,6 +153,36 @@ output: {every_steps: 0, vtu: false}
   EXPECT_GT(record.value(1, "mass_injected_kg"), 0.0);
   EXPECT_EQ(record.series("probe_inlet_pressure_Pa"), record.series("injection_pressure_Pa"));
   fs::remove_all(dir);
+}
+
+// Lengths per joint kind and extents (seed 5.2-5.4) on a mesh whose joint states are set
+// by the case: an open natural fracture and an open rock fracture of known lengths.
+TEST(RunRecord, LengthsPerJointKind) {
+  const char* text = R"(
+title: "kinds"
+domain:
+  outer: {xmin: -8, xmax: 8, ymin: -8, ymax: 8}
+mesh: {type: structured, cell_size: 2.0, split: four}
+joints: {tensile_strength: 1.0e6, breakable: false}
+fractures:
+  - {name: rock, from: [-2, 0], to: [2, 0], initially_open: true, fluid_filled: true}
+  - {name: natural, from: [4, -4], to: [4, 2], natural: true, initially_open: true, hydraulic_width: 1.0e-6}
+fluid: {}
+injections:
+  - {name: well, at: [0, 0], mass_rate: 1.0}
+fixed_points: [[-8, -8], [8, -8], [8, 8], [-8, 8]]
+time: {dt: 1.0, end_time: 1.0}
+)";
+  const Model model = build_model(io::load_case_text(text, "kinds.yaml"));
+  const StepStatistics stats;
+  const StepContext c = make_step_context(model, 0, 0.0, stats, 0.0);
+  EXPECT_NEAR(c.opened_m[0], 4.0, 1e-12);   // the rock fracture, 4 m
+  EXPECT_NEAR(c.opened_m[1], 6.0, 1e-12);   // the natural one, 6 m
+  EXPECT_NEAR(c.invaded_m[0], 4.0, 1e-12);  // only the fluid-filled one holds fluid
+  EXPECT_EQ(c.invaded_m[1], 0.0);
+  EXPECT_EQ(c.slipped_m[0] + c.slipped_m[1], 0.0);
+  EXPECT_NEAR(c.open_extent_m, std::hypot(4.0, 4.0), 1e-12);  // (4, -4) from the injection point
+  EXPECT_NEAR(c.invaded_extent_m, 2.0, 1e-12);
 }
 
 }  // namespace
