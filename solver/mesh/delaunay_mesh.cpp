@@ -38,6 +38,10 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_
 // Above this the standard Delaunay refinement has no termination guarantee even for
 // inputs without small angles (Shewchuk's Triangle works up to about 33 degrees).
 constexpr double kMaxMinAngleDeg = 33.0;
+/// Feature ends this close to another feature (relative to the domain's diagonal) are
+/// snapped onto it: 5e-7 of a 141 m diagonal is 0.07 mm, far below any joint length and
+/// far above the rounding of written or digitised coordinates.
+constexpr double kSnapTolerance = 5e-7;
 
 using detail::num;
 
@@ -300,15 +304,32 @@ Mesh extract_mesh(Cdt& cdt) {
 
 }  // namespace
 
-Mesh build_delaunay_mesh(const DelaunayMeshSpec& spec) {
-  validate(spec);
+Mesh build_delaunay_mesh(const DelaunayMeshSpec& input) {
+  validate(input);
+  // Features meet exactly: near-misses within the snap tolerance are snapped, crossings
+  // split (feature_crossings.cpp); what is left farther apart than the rounding
+  // tolerance of reject_near_misses is fine.
+  std::vector<std::pair<Vec2, Vec2>> sides;
+  auto add_sides = [&](const Rect& r) {
+    const Vec2 c[] = {{r.xmin, r.ymin}, {r.xmax, r.ymin}, {r.xmax, r.ymax}, {r.xmin, r.ymax}};
+    for (int i = 0; i < 4; ++i) sides.emplace_back(c[i], c[(i + 1) % 4]);
+  };
+  add_sides(input.outer);
+  if (input.has_inner) add_sides(input.inner);
+  DelaunayMeshSpec spec = input;
+  const double diagonal = std::hypot(spec.outer.width(), spec.outer.height());
+  JoinedFeatures joined = join_line_features(input.constraints, sides, kSnapTolerance * diagonal);
+  spec.constraints = std::move(joined.features);
   reject_near_misses(spec);
   Cdt cdt;
   insert_rectangle(cdt, spec.outer);
   if (spec.has_inner) insert_rectangle(cdt, spec.inner);
   for (const LineFeature& f : spec.constraints) insert_feature(cdt, f, spec.outer);
   refine(cdt, spec);
-  return extract_mesh(cdt);
+  Mesh mesh = extract_mesh(cdt);
+  mesh.snapped_feature_ends = joined.snapped_ends;
+  mesh.largest_feature_snap_m = joined.largest_snap_m;
+  return mesh;
 }
 
 }  // namespace hfdda::mesh

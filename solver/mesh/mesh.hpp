@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -55,6 +56,10 @@ struct BoundaryEdge {
 
 struct Mesh {
   std::vector<Vec2> points;
+  /// Delaunay meshes: line-feature ends snapped onto others (join_line_features) and the
+  /// largest move [m].
+  int snapped_feature_ends = 0;
+  double largest_feature_snap_m = 0.0;
   std::vector<Block> blocks;
   std::vector<Joint> joints;
   std::vector<BoundaryEdge> boundary_edges;
@@ -96,6 +101,20 @@ struct DelaunayMeshSpec {
   double min_angle_deg = 25.0;
   std::vector<LineFeature> constraints;
 };
+
+/// Line features made to meet exactly (feature_crossings.cpp): every feature end within
+/// `snap_tolerance_m` of another feature's end or interior, or of a fixed line (the
+/// rectangles' sides), is moved onto it; then features are split where they cross each
+/// other or where an end of one lies on another. The pieces keep their feature's name
+/// and values, in the features' order.
+struct JoinedFeatures {
+  std::vector<LineFeature> features;
+  int snapped_ends = 0;         ///< feature ends moved
+  double largest_snap_m = 0.0;  ///< the largest move [m]
+  int splits = 0;               ///< cuts made at crossings and touching ends
+};
+JoinedFeatures join_line_features(const std::vector<LineFeature>& features,
+                                  const std::vector<std::pair<Vec2, Vec2>>& fixed_lines, double snap_tolerance_m);
 
 Mesh build_structured_mesh(const StructuredMeshSpec& spec);
 Mesh build_delaunay_mesh(const DelaunayMeshSpec& spec);
