@@ -74,6 +74,13 @@ def study_variants():
                          f'tiers: [full],\n     group: dt, same_mode_as: {r["test_id"].lower()}, '
                          f'{attrs.replace("group: test, ", "")},\n'
                          f'     set: {{far_field: {far_field(smax, smin)}, time: {{dt: 0.25}}}}}}')
+        if r["test_id"] == "CT22":
+            for tiers, group in (("[quick]", "quick"), ("[full]", "dt")):
+                lines.append(f'  - {{name: ct22_map_{group}, case: nf_45_map.yaml, label: "{label}, natural fracture from a map'
+                             f'{" (quick tier)" if group == "quick" else ""}", tiers: {tiers},\n'
+                             f'     {attrs.replace("group: test", "group: " + group)}' +
+                             (', same_mode_as: ct22' if group == "dt" else '') + ',\n'
+                             f'     set: {{far_field: {far_field(smax, smin)}}}}}')
         if r["test_id"] == "CT20":
             lines.append(f'  - {{name: ct20_quick, case: nf_{theta}.yaml, label: "{label} (quick tier)", tiers: [quick],\n'
                          f'     {attrs.replace("group: test", "group: quick")},\n'

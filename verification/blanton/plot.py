@@ -59,10 +59,11 @@ def main(result_dir):
     tier, metrics = plot_common.read_result(result_dir)
     modes = rows(os.path.join(result_dir, "modes.csv"))
     if tier == "quick":
-        fig, ax = plt.subplots(figsize=(4, 4))
-        m = next((r for r in modes if r["variant"] == "ct20_quick"), None)
-        title = f"CT20: {m['mode']} (Blanton: {m['blanton_mode']}), t = {m['time_s']} s" if m else "CT20"
-        draw_joints(ax, result_dir, "ct20_quick", title)
+        fig, axes = plt.subplots(1, 2, figsize=(8, 4))
+        for ax, (variant, name) in zip(axes, [("ct20_quick", "CT20"), ("ct22_map_quick", "CT22 (map)")]):
+            m = next((r for r in modes if r["variant"] == variant), None)
+            title = f"{name}: {m['mode']} (Blanton: {m['blanton_mode']}), t = {m['time_s']} s" if m else name
+            draw_joints(ax, result_dir, variant, title)
         plot_common.save(fig, result_dir, "blanton_quick.png")
         return
     tests = [r for r in modes if r["group"] == "test"]
