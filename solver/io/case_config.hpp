@@ -107,6 +107,21 @@ struct BreakablePatternConfig {
   int line = 0;                               ///< case-file line, for error messages
 };
 
+/// A map of natural fractures as line segments in a CSV file (outcrops, image logs,
+/// other DFN tools): header x1,y1,x2,y2 and optional columns set, tensile_strength,
+/// cohesion, friction_angle, hydraulic_width. The loader turns every row into a
+/// FractureConfig appended to CaseConfig::fractures (io/fracture_maps.hpp).
+struct FractureMapConfig {
+  std::string name = "map";
+  std::string file;                  ///< as written
+  std::string path;                  ///< resolved against the case file that names it
+  bool natural = true;
+  double segment_length_m = 0.0;     ///< Delaunay constraint piece length (0: mesh size)
+  std::optional<bool> breakable;
+  std::optional<double> tensile_strength_Pa, cohesion_Pa, friction_angle_deg, hydraulic_width_m;
+  int line = 0;
+};
+
 /// Fracturing fluid (seed 2.1, Table 3.1). Present in a case file means the flow
 /// network is solved, coupled with the blocks.
 struct FluidConfig {
@@ -240,6 +255,8 @@ struct CaseConfig {
   /// The written line features, then the lines of breakable_patterns (added by the loader).
   std::vector<FractureConfig> fractures;
   std::vector<BreakablePatternConfig> breakable_patterns;
+  /// Natural-fracture maps read from CSV files (their rows end up in `fractures`).
+  std::vector<FractureMapConfig> fracture_maps;
   FarFieldConfig far_field;
   std::optional<LoadRampConfig> load_ramp;  ///< absent: loads constant, time stepping to end_time
   std::vector<PointLoadConfig> point_loads;

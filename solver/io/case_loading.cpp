@@ -20,6 +20,7 @@
 #include "io/case_schema.hpp"
 #include "io/case_tables.hpp"
 #include "io/case_text.hpp"
+#include "io/fracture_maps.hpp"
 
 namespace hfdda::io {
 
@@ -128,6 +129,7 @@ CaseConfig load_case_text(const std::string& yaml_text, const std::string& file_
   for (const auto& check : cross_checks()) check.check(config, checker);
   append_breakable_pattern_lines(config);
   config.file = file_label;
+  append_fracture_map_lines(config);
   record_mesh_origin(where, config);
   return config;
 }

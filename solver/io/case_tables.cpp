@@ -7,6 +7,7 @@
 #include "io/case_tables.hpp"
 
 #include "io/breakable_patterns.hpp"
+#include "io/fracture_maps.hpp"
 #include "io/case_fields.hpp"
 #include "io/load_ramp_keys.hpp"
 
@@ -505,6 +506,7 @@ const Table<CaseConfig>& case_table() {
        map_list({"fractures", "", "§3.1-3.5, §5.2-5.4", "line features"},
                 &CaseConfig::fractures, &fracture_table, 0, "none", check_fracture_item),
        breakable_patterns_key(),
+       fracture_maps_key(),
        section({"far_field", "", "§3.1: background stress", "far-field stress"},
                &CaseConfig::far_field, &far_field_table),
        load_ramp_key(),

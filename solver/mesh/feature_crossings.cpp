@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "mesh/mesh.hpp"
 
@@ -108,7 +109,22 @@ JoinedFeatures join_line_features(const std::vector<LineFeature>& features,
       }
   }
 
-  // 2. Split each feature where another crosses it or ends on it (within tol).
+  // 2. Split each feature where another crosses it or ends on it (within tol). Cut points
+  // within tol of each other are one point, shared by every feature cut there (three
+  // features crossing at nearly one place must not get three points a rounding error apart).
+  std::map<std::pair<long long, long long>, std::vector<Vec2>> cut_points;
+  auto shared_point = [&](const Vec2& x) {
+    const long long ix = static_cast<long long>(std::floor(x.x() / tol)), iy = static_cast<long long>(std::floor(x.y() / tol));
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy) {
+        const auto it = cut_points.find({ix + dx, iy + dy});
+        if (it == cut_points.end()) continue;
+        for (const Vec2& q : it->second)
+          if ((q - x).norm() <= tol) return q;
+      }
+    cut_points[{ix, iy}].push_back(x);
+    return x;
+  };
   std::vector<std::vector<std::pair<double, Vec2>>> cuts(nf);
   {
     std::vector<std::pair<Vec2, Vec2>> feature_segments(seg.begin(), seg.begin() + nf);
@@ -125,7 +141,7 @@ JoinedFeatures join_line_features(const std::vector<LineFeature>& features,
         for (const Vec2& q : {c, d}) {
           const double t = (q - a).dot(ab) / length2;
           if (t <= 0.0 || t >= 1.0 || q == a || q == b) continue;
-          if (std::abs(cross(ab, q - a)) / std::sqrt(length2) <= tol) cuts[i].emplace_back(t, q);
+          if (std::abs(cross(ab, q - a)) / std::sqrt(length2) <= tol) cuts[i].emplace_back(t, shared_point(q));
         }
         // A proper crossing of the interiors: both are cut at the same constructed point.
         const Vec2 cd = d - c;
@@ -141,6 +157,7 @@ JoinedFeatures join_line_features(const std::vector<LineFeature>& features,
             if (line->first.x() == line->second.x()) x.x() = line->first.x();
             if (line->first.y() == line->second.y()) x.y() = line->first.y();
           }
+          x = shared_point(x);
           cuts[i].emplace_back(t, x);
           cuts[k].emplace_back(u, x);
         }

@@ -73,6 +73,10 @@ std::uint64_t case_fingerprint(const Model& model) {
     fnv1a(h, text.data(), text.size());
     file = extends_target(text, file);
   }
+  for (const io::FractureMapConfig& map : model.config.fracture_maps) {  // their CSV files too
+    const std::string text = read_text(map.path);
+    fnv1a(h, text.data(), text.size());
+  }
   const dda::BlockSystem& system = *model.system;
   const std::int64_t sizes[] = {system.n_blocks(), static_cast<std::int64_t>(system.contacts().size()),
                                 static_cast<std::int64_t>(system.mesh().points.size())};

@@ -68,14 +68,56 @@ mesh::JointProperties default_joint_properties(const io::CaseConfig& c) {
   return p;
 }
 
+/// Joints by the grid cell of their midpoint, so that the joints along a fracture are
+/// searched near it only (maps of tens of thousands of fractures).
+class JointGrid {
+ public:
+  JointGrid(const mesh::Mesh& m, const Rect& outer) : outer_(outer) {
+    cells_ = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(m.joints.size()) / 4.0)), 1, 2048);
+    bucket_.resize(static_cast<std::size_t>(cells_) * cells_);
+    for (int j = 0; j < static_cast<int>(m.joints.size()); ++j) {
+      const Vec2 mid = 0.5 * (m.points[m.joints[j].point_p] + m.points[m.joints[j].point_q]);
+      bucket_[index(cell_x(mid.x()), cell_y(mid.y()))].push_back(j);
+    }
+  }
+  /// Joints whose both ends lie within tol of segment [a, b].
+  std::vector<int> on_segment(const mesh::Mesh& m, const Vec2& a, const Vec2& b, double tol) const {
+    std::vector<int> ids;
+    const double grow = tol;  // a joint on the segment has its midpoint within tol of it
+    for (int ix = cell_x(std::min(a.x(), b.x()) - grow); ix <= cell_x(std::max(a.x(), b.x()) + grow); ++ix)
+      for (int iy = cell_y(std::min(a.y(), b.y()) - grow); iy <= cell_y(std::max(a.y(), b.y()) + grow); ++iy)
+        for (int j : bucket_[index(ix, iy)])
+          if (point_segment_distance(m.points[m.joints[j].point_p], a, b) <= tol &&
+              point_segment_distance(m.points[m.joints[j].point_q], a, b) <= tol &&
+              parallel(m.points[m.joints[j].point_q] - m.points[m.joints[j].point_p], b - a))
+            ids.push_back(j);
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  }
+
+ private:
+  /// A short joint of a feature crossing at a shallow angle can have both ends within tol
+  /// of the segment; a joint of the segment runs along it.
+  static bool parallel(const Vec2& joint, const Vec2& segment) {
+    return std::abs(joint.x() * segment.y() - joint.y() * segment.x()) <= 1e-6 * joint.norm() * segment.norm();
+  }
+  int cell_x(double x) const { return std::clamp(static_cast<int>((x - outer_.xmin) / outer_.width() * cells_), 0, cells_ - 1); }
+  int cell_y(double y) const { return std::clamp(static_cast<int>((y - outer_.ymin) / outer_.height() * cells_), 0, cells_ - 1); }
+  std::size_t index(int ix, int iy) const { return static_cast<std::size_t>(ix) * cells_ + iy; }
+  Rect outer_;
+  int cells_ = 1;
+  std::vector<std::vector<int>> bucket_;
+};
+
 /// Joints along each fracture take its overrides; a fracture must be made of joints.
 std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c) {
   std::vector<int> fracture_of_joint(m.joints.size(), -1);
   const double tol = 1e-6 * domain_size(c);
+  const JointGrid grid(m, c.domain.outer);
   for (std::size_t f = 0; f < c.fractures.size(); ++f) {
     const io::FractureConfig& fr = c.fractures[f];
     const std::string key = "fractures[" + std::to_string(f) + "]";
-    const std::vector<int> on = mesh::joints_on_segment(m, fr.from, fr.to, tol);
+    const std::vector<int> on = grid.on_segment(m, fr.from, fr.to, tol);
     double covered = 0.0;
     for (int j : on) covered += (m.points[m.joints[j].point_q] - m.points[m.joints[j].point_p]).norm();
     const double length = (fr.to - fr.from).norm();
