@@ -88,19 +88,13 @@ class JointGrid {
       for (int iy = cell_y(std::min(a.y(), b.y()) - grow); iy <= cell_y(std::max(a.y(), b.y()) + grow); ++iy)
         for (int j : bucket_[index(ix, iy)])
           if (point_segment_distance(m.points[m.joints[j].point_p], a, b) <= tol &&
-              point_segment_distance(m.points[m.joints[j].point_q], a, b) <= tol &&
-              parallel(m.points[m.joints[j].point_q] - m.points[m.joints[j].point_p], b - a))
+              point_segment_distance(m.points[m.joints[j].point_q], a, b) <= tol)
             ids.push_back(j);
     std::sort(ids.begin(), ids.end());
     return ids;
   }
 
  private:
-  /// A short joint of a feature crossing at a shallow angle can have both ends within tol
-  /// of the segment; a joint of the segment runs along it.
-  static bool parallel(const Vec2& joint, const Vec2& segment) {
-    return std::abs(joint.x() * segment.y() - joint.y() * segment.x()) <= 1e-6 * joint.norm() * segment.norm();
-  }
   int cell_x(double x) const { return std::clamp(static_cast<int>((x - outer_.xmin) / outer_.width() * cells_), 0, cells_ - 1); }
   int cell_y(double y) const { return std::clamp(static_cast<int>((y - outer_.ymin) / outer_.height() * cells_), 0, cells_ - 1); }
   std::size_t index(int ix, int iy) const { return static_cast<std::size_t>(ix) * cells_ + iy; }

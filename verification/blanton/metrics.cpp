@@ -164,6 +164,16 @@ Metrics variant_metrics(const VariantRun& r) {
   m.json["delta_sigma_MPa"] = (v.number("sigma_max_Pa") - v.number("sigma_min_Pa")) / 1e6;
   if (!r.built || !r.model || !r.config) return m;
   const Geometry g = geometry_of(*r.config);
+  // The natural fracture as the mesh holds it: the length of its joints against the
+  // length of the line features that define it (a fracture map must land on joints).
+  double natural_joints_m = 0.0, natural_features_m = 0.0;
+  for (const mesh::Joint& joint : r.model->system->mesh().joints)
+    if (joint.properties.natural)
+      natural_joints_m += (r.model->system->mesh().points[joint.point_q] - r.model->system->mesh().points[joint.point_p]).norm();
+  for (const io::FractureConfig& f : r.config->fractures)
+    if (f.natural) natural_features_m += (f.to - f.from).norm();
+  m.numbers["natural_length_error"] = std::abs(natural_joints_m - natural_features_m) / natural_features_m;
+  m.json["natural_joints_m"] = natural_joints_m;
   const Interaction in = interaction_of(*r.model, g);
   m.numbers["mode_code"] = static_cast<double>(in.mode);
   m.numbers["natural_opened_m"] = in.natural_opened_m;
