@@ -7,6 +7,7 @@
 // refinement may split a piece further when a new point encroaches on it.
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
 #include <CGAL/Delaunay_mesh_face_base_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -15,9 +16,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -32,8 +35,12 @@ using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;  //
 using FaceBase = CGAL::Delaunay_mesh_face_base_2<Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 // Exact_predicates_tag: crossing line features are allowed; their intersection points
-// are constructed (inexactly) and become mesh points.
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
+// are constructed (inexactly) and become mesh points (join_line_features has already
+// split features at their crossings, so this is a safety net).
+using CdtBase = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
+// The "plus" hierarchy remembers which input constraint every refined edge came from,
+// so the joints of a feature are known from meshing rather than searched for again.
+using Cdt = CGAL::Constrained_triangulation_plus_2<CdtBase>;
 
 // Above this the standard Delaunay refinement has no termination guarantee even for
 // inputs without small angles (Shewchuk's Triangle works up to about 33 degrees).
@@ -165,19 +172,19 @@ int piece_count(const LineFeature& f) {
   return std::max(1, static_cast<int>(std::ceil((f.to - f.from).norm() / f.segment_length_m - 1e-9)));
 }
 
-void insert_feature(Cdt& cdt, const LineFeature& f, const Rect& outer) {
+/// Inserts a feature as one polyline constraint of its pieces; returns its id.
+Cdt::Constraint_id insert_feature(Cdt& cdt, const LineFeature& f, const Rect& outer) {
   // End points within round-off outside the domain are pulled onto its boundary: a
   // point outside would enlarge the convex hull by a sliver that is not domain.
   const Vec2 lo(outer.xmin, outer.ymin), hi(outer.xmax, outer.ymax);
   const auto inside = [&](const Vec2& p) -> Vec2 { return p.cwiseMax(lo).cwiseMin(hi); };
   const int n = piece_count(f);
-  Cdt::Vertex_handle previous = cdt.insert(point_of(inside(f.from)));
+  std::vector<Cdt::Point> points{point_of(inside(f.from))};
   for (int k = 1; k <= n; ++k) {
     const Vec2 p = k == n ? f.to : Vec2(f.from + (f.to - f.from) * (static_cast<double>(k) / n));
-    const Cdt::Vertex_handle next = cdt.insert(point_of(inside(p)));
-    cdt.insert_constraint(previous, next);
-    previous = next;
+    points.push_back(point_of(inside(p)));
   }
+  return cdt.insert_constraint(points.begin(), points.end());
 }
 
 /// The straight constraint pieces as they will be inserted: the rectangles' sides and
@@ -281,8 +288,9 @@ void refine(Cdt& cdt, const DelaunayMeshSpec& spec) {
   }
 }
 
-/// Blocks from the triangles inside the domain, points numbered in order of first use.
-Mesh extract_mesh(Cdt& cdt) {
+/// Blocks from the triangles inside the domain, points numbered in order of first use;
+/// the feature edges from the constraint hierarchy.
+Mesh extract_mesh(Cdt& cdt, const std::map<Cdt::Constraint_id, int>& feature_of_constraint) {
   Mesh mesh;
   for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) v->info() = -1;
   mesh.blocks.reserve(cdt.number_of_faces());
@@ -299,6 +307,26 @@ Mesh extract_mesh(Cdt& cdt) {
       block.points.push_back(v->info());
     }
   }
+  mesh.has_feature_edges = true;
+  for (auto e = cdt.finite_edges_begin(); e != cdt.finite_edges_end(); ++e) {
+    if (!cdt.is_constrained(*e)) continue;
+    const Cdt::Vertex_handle va = e->first->vertex(Cdt::cw(e->second));
+    const Cdt::Vertex_handle vb = e->first->vertex(Cdt::ccw(e->second));
+    if (va->info() < 0 || vb->info() < 0) continue;
+    for (auto context : cdt.contexts(va, vb)) {  // Context::id() is not const in CGAL 5.5
+      const auto it = feature_of_constraint.find(context.id());
+      if (it != feature_of_constraint.end()) mesh.feature_edges.push_back({va->info(), vb->info(), it->second});
+    }
+  }
+  std::sort(mesh.feature_edges.begin(), mesh.feature_edges.end(), [](const FeatureEdge& x, const FeatureEdge& y) {
+    return std::tie(x.feature, x.point_p, x.point_q) < std::tie(y.feature, y.point_p, y.point_q);
+  });
+  mesh.feature_edges.erase(std::unique(mesh.feature_edges.begin(), mesh.feature_edges.end(),
+                                       [](const FeatureEdge& x, const FeatureEdge& y) {
+                                         return x.feature == y.feature && x.point_p == y.point_p &&
+                                                x.point_q == y.point_q;
+                                       }),
+                           mesh.feature_edges.end());
   return mesh;
 }
 
@@ -324,9 +352,11 @@ Mesh build_delaunay_mesh(const DelaunayMeshSpec& input) {
   Cdt cdt;
   insert_rectangle(cdt, spec.outer);
   if (spec.has_inner) insert_rectangle(cdt, spec.inner);
-  for (const LineFeature& f : spec.constraints) insert_feature(cdt, f, spec.outer);
+  std::map<Cdt::Constraint_id, int> feature_of_constraint;  // joined piece -> input feature
+  for (std::size_t k = 0; k < spec.constraints.size(); ++k)
+    feature_of_constraint[insert_feature(cdt, spec.constraints[k], spec.outer)] = joined.source_feature[k];
   refine(cdt, spec);
-  Mesh mesh = extract_mesh(cdt);
+  Mesh mesh = extract_mesh(cdt, feature_of_constraint);
   mesh.snapped_feature_ends = joined.snapped_ends;
   mesh.largest_feature_snap_m = joined.largest_snap_m;
   return mesh;

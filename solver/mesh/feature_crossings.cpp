@@ -173,12 +173,14 @@ JoinedFeatures join_line_features(const std::vector<LineFeature>& features,
       LineFeature piece = features[i];
       piece.from = from, piece.to = x;
       out.features.push_back(piece);
+      out.source_feature.push_back(i);
       from = x;
       ++out.splits;
     }
     LineFeature last = features[i];
     last.from = from, last.to = seg[i].second;
     out.features.push_back(last);
+    out.source_feature.push_back(i);
   }
   return out;
 }

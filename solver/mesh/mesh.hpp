@@ -54,8 +54,19 @@ struct BoundaryEdge {
   int point_p = -1, point_q = -1;
 };
 
+/// A mesh edge lying on a line feature of a Delaunay mesh: `feature` indexes
+/// DelaunayMeshSpec::constraints. An edge on two overlapping features appears twice.
+struct FeatureEdge {
+  int point_p = -1, point_q = -1;
+  int feature = -1;
+};
+
 struct Mesh {
   std::vector<Vec2> points;
+  /// Delaunay meshes: every edge of every line feature, from the constraint the
+  /// triangulation kept for it while refining (no geometric search). Sorted by feature.
+  std::vector<FeatureEdge> feature_edges;
+  bool has_feature_edges = false;  ///< feature_edges is authoritative (a Delaunay mesh)
   /// Delaunay meshes: line-feature ends snapped onto others (join_line_features) and the
   /// largest move [m].
   int snapped_feature_ends = 0;
@@ -109,6 +120,7 @@ struct DelaunayMeshSpec {
 /// and values, in the features' order.
 struct JoinedFeatures {
   std::vector<LineFeature> features;
+  std::vector<int> source_feature;  ///< per joined feature: index of the input feature it is part of
   int snapped_ends = 0;         ///< feature ends moved
   double largest_snap_m = 0.0;  ///< the largest move [m]
   int splits = 0;               ///< cuts made at crossings and touching ends

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cmath>
+#include <unordered_map>
 #include <numbers>
 #include <sstream>
 
@@ -103,25 +104,65 @@ class JointGrid {
   std::vector<std::vector<int>> bucket_;
 };
 
-/// Joints along each fracture take its overrides; a fracture must be made of joints.
-std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c) {
-  std::vector<int> fracture_of_joint(m.joints.size(), -1);
+/// The joints of each fracture. A Delaunay mesh knows which edges lie on which feature
+/// (the constraint each edge was refined from; fracture f is constraint f), so a
+/// snapped or split fracture is found exactly; a structured mesh is searched
+/// geometrically. Either way a fracture must be made of joints, not outer-boundary edges.
+std::vector<std::vector<int>> joints_of_fractures(const mesh::Mesh& m, const io::CaseConfig& c) {
+  std::vector<std::vector<int>> joints(c.fractures.size());
+  const auto edge_length = [&](int p, int q) { return (m.points[q] - m.points[p]).norm(); };
+  const auto fail = [&](std::size_t f, double covered, double length, const std::string& why) {
+    const io::FractureConfig& fr = c.fractures[f];
+    std::ostringstream rule;
+    rule << "fracture from " << format_point(fr.from) << " to " << format_point(fr.to)
+         << " does not follow mesh edges (joints cover " << covered << " m of " << length << " m); " << why;
+    throw InputError(c.file, fr.line, "fractures[" + std::to_string(f) + "]", rule.str());
+  };
+  if (m.has_feature_edges) {
+    std::unordered_map<long long, int> joint_of_edge;
+    const auto key = [&](int p, int q) {
+      return static_cast<long long>(std::min(p, q)) * static_cast<long long>(m.points.size()) + std::max(p, q);
+    };
+    joint_of_edge.reserve(m.joints.size());
+    for (int j = 0; j < static_cast<int>(m.joints.size()); ++j)
+      joint_of_edge[key(m.joints[j].point_p, m.joints[j].point_q)] = j;
+    std::vector<double> covered(c.fractures.size(), 0.0), total(c.fractures.size(), 0.0);
+    for (const mesh::FeatureEdge& e : m.feature_edges) {
+      const double length = edge_length(e.point_p, e.point_q);
+      total[e.feature] += length;
+      const auto it = joint_of_edge.find(key(e.point_p, e.point_q));
+      if (it == joint_of_edge.end()) continue;
+      joints[e.feature].push_back(it->second);
+      covered[e.feature] += length;
+    }
+    for (std::size_t f = 0; f < c.fractures.size(); ++f) {
+      if (joints[f].empty() || covered[f] < total[f])
+        fail(f, covered[f], total[f], "part of it lies on the outer boundary of the domain");
+      std::sort(joints[f].begin(), joints[f].end());
+    }
+    return joints;
+  }
   const double tol = 1e-6 * domain_size(c);
   const JointGrid grid(m, c.domain.outer);
   for (std::size_t f = 0; f < c.fractures.size(); ++f) {
     const io::FractureConfig& fr = c.fractures[f];
-    const std::string key = "fractures[" + std::to_string(f) + "]";
-    const std::vector<int> on = grid.on_segment(m, fr.from, fr.to, tol);
+    joints[f] = grid.on_segment(m, fr.from, fr.to, tol);
     double covered = 0.0;
-    for (int j : on) covered += (m.points[m.joints[j].point_q] - m.points[m.joints[j].point_p]).norm();
+    for (int j : joints[f]) covered += edge_length(m.joints[j].point_p, m.joints[j].point_q);
     const double length = (fr.to - fr.from).norm();
-    if (std::abs(covered - length) > 1e-6 * length) {
-      std::ostringstream rule;
-      rule << "fracture from " << format_point(fr.from) << " to " << format_point(fr.to)
-           << " does not follow mesh edges (joints cover " << covered << " m of " << length
-           << " m); on a structured mesh a fracture must lie on grid lines";
-      throw InputError(c.file, fr.line, key, rule.str());
-    }
+    if (std::abs(covered - length) > 1e-6 * length)
+      fail(f, covered, length, "on a structured mesh a fracture must lie on grid lines");
+  }
+  return joints;
+}
+
+/// Joints along each fracture take its overrides; a fracture must be made of joints.
+std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c) {
+  std::vector<int> fracture_of_joint(m.joints.size(), -1);
+  const std::vector<std::vector<int>> joints = joints_of_fractures(m, c);
+  for (std::size_t f = 0; f < c.fractures.size(); ++f) {
+    const io::FractureConfig& fr = c.fractures[f];
+    const std::vector<int>& on = joints[f];
     for (int j : on) {
       mesh::JointProperties& p = m.joints[j].properties;
       fracture_of_joint[j] = static_cast<int>(f);

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -118,6 +119,35 @@ fractures:
     natural += jm[j].properties.natural;
   }
   EXPECT_GE(natural, 24);  // 12 m + 12 m of joints no longer than 1 m
+}
+
+TEST(FractureMaps, EveryFractureOfADenseMapOwnsItsJoints) {
+  // 400 random segments crossing each other, some ends a digitising error from another
+  // segment: the joints of each fracture come from its constraint through meshing, so
+  // every fracture is made of joints whose length is its own (as snapped).
+  TempDir dir;
+  std::string csv = "x1,y1,x2,y2\n";
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> centre(-8.0, 8.0), angle(0.0, 3.14159), length(0.5, 2.5);
+  for (int i = 0; i < 400; ++i) {
+    const double cx = centre(rng), cy = centre(rng), a = angle(rng), l = length(rng);
+    csv += std::to_string(cx - 0.5 * l * std::cos(a)) + "," + std::to_string(cy - 0.5 * l * std::sin(a)) + "," +
+           std::to_string(cx + 0.5 * l * std::cos(a)) + "," + std::to_string(cy + 0.5 * l * std::sin(a)) + "\n";
+  }
+  csv += "-9,9,9,9\n-3,9.000003,-3,5\n";  // an end 3 um above the fracture before it: snapped
+  dir.write("map.csv", csv);
+  const CaseConfig c = load_case_file(dir.write("case.yaml", kCase));
+  const simulation::Model model = simulation::build_model(c);
+  const auto& mesh = model.system->mesh();
+  ASSERT_TRUE(mesh.has_feature_edges);
+  EXPECT_GE(mesh.snapped_feature_ends, 1);
+  std::vector<double> owned(c.fractures.size(), 0.0);
+  for (const auto& e : mesh.feature_edges) owned[e.feature] += (mesh.points[e.point_q] - mesh.points[e.point_p]).norm();
+  for (std::size_t f = 0; f < c.fractures.size(); ++f)
+    EXPECT_NEAR(owned[f], (c.fractures[f].to - c.fractures[f].from).norm(), 1e-5) << "fracture " << f;
+  int natural = 0;
+  for (const auto& j : mesh.joints) natural += j.properties.natural;
+  EXPECT_GE(natural, 400);
 }
 
 }  // namespace

@@ -301,6 +301,23 @@ TEST(MeshDelaunay, CrossingFracturesCutIntoJointsMeetExactly) {
     lengths[1] += (m.points[m.joints[j].point_q] - m.points[m.joints[j].point_p]).norm();
   EXPECT_NEAR(lengths[0], 100.0, 1e-9);
   EXPECT_NEAR(lengths[1], 50.0, 1e-9);
+  // The triangulation says which edges came from which feature: each feature's edges lie
+  // on it, cover it, and both features own an edge at the crossing point.
+  ASSERT_TRUE(m.has_feature_edges);
+  double owned[2] = {0.0, 0.0};
+  bool at_crossing[2] = {false, false};
+  const Vec2 ends[2][2] = {{Vec2(-50, 0), Vec2(50, 0)}, {Vec2(-22.5, -25), Vec2(-22.5, 25)}};
+  for (const FeatureEdge& e : m.feature_edges) {
+    ASSERT_TRUE(e.feature == 0 || e.feature == 1);
+    const Vec2 &p = m.points[e.point_p], &q = m.points[e.point_q];
+    const Vec2 d = ends[e.feature][1] - ends[e.feature][0];
+    for (const Vec2& x : {p, q}) EXPECT_LT(std::abs(d.x() * (x - ends[e.feature][0]).y() - d.y() * (x - ends[e.feature][0]).x()) / d.norm(), 1e-9);
+    owned[e.feature] += (q - p).norm();
+    at_crossing[e.feature] = at_crossing[e.feature] || p == crossing || q == crossing;
+  }
+  EXPECT_NEAR(owned[0], 100.0, 1e-9);
+  EXPECT_NEAR(owned[1], 50.0, 1e-9);
+  EXPECT_TRUE(at_crossing[0] && at_crossing[1]);
   // A digitised end 2e-5 m short of the long fracture is snapped onto it and reported.
   s.constraints[1].to = Vec2(-22.5, -2e-5);
   s.constraints[1].from = Vec2(-22.5, -25);
