@@ -52,5 +52,36 @@ TEST(InteractionCriteria, WarpinskiTeufelOpeningAndSlip) {
   EXPECT_FALSE(warpinski_teufel_slips(45 * kDeg, 2e6, 5e6, 1.5e6, kMu, 0.0));
 }
 
+TEST(InteractionCriteria, GuWengConstructionReducesToRenshawPollardAtRightAngles) {
+  // At 90 degrees both rays are at +-90 degrees: s cos45 (1 + sin45 sin135) = 1.0607 s
+  // reaches T0 + sigma_h, and the interface holds if 0.3536 s < mu (sigma_H - 0.3536 s):
+  // sigma_H / (T0 + sigma_h) > (1 + 1 / mu) / 3, Renshaw-Pollard with unrounded coefficients.
+  const double exact = (1.0 + 1.0 / kMu) / 3.0 * (6e6 + 5e6) - 5e6;  // 3.903 MPa
+  const auto at_90 = gu_weng_critical_differential_stress(90 * kDeg, 5e6, 6e6, kMu, 40e6);
+  ASSERT_TRUE(at_90.has_value());
+  EXPECT_NEAR(*at_90, exact, 2e3);
+  EXPECT_NEAR(*at_90, renshaw_pollard_critical_differential_stress(5e6, 6e6, kMu), 0.025 * exact);  // rounding of 0.35, 1.06
+  EXPECT_TRUE(gu_weng_crosses(90 * kDeg, 14e6, 5e6, 6e6, kMu));
+  EXPECT_FALSE(gu_weng_crosses(90 * kDeg, 8e6, 5e6, 6e6, kMu));
+}
+
+TEST(InteractionCriteria, GuWengConstructionNeedsMoreClampingAtSmallerAngles) {
+  // Shear on an inclined interface makes it slip sooner: the crossing stress grows as the
+  // approach angle falls, and below some angle no differential stress up to 40 MPa crosses.
+  double previous = 0.0;
+  for (int theta = 90; theta >= 65; theta -= 5) {
+    const auto c = gu_weng_critical_differential_stress(theta * kDeg, 5e6, 6e6, kMu, 40e6);
+    ASSERT_TRUE(c.has_value()) << theta;
+    EXPECT_GT(*c, previous) << theta;
+    previous = *c;
+  }
+  EXPECT_GT(previous, 15e6);  // 65 degrees: 17.3 MPa
+  EXPECT_FALSE(gu_weng_critical_differential_stress(45 * kDeg, 5e6, 6e6, kMu, 40e6).has_value());
+  // Cohesion on the interface helps it hold: crossing at 75 degrees with 1 MPa cohesion
+  // where the cohesionless interface slips.
+  EXPECT_FALSE(gu_weng_crosses(75 * kDeg, 5e6 + 6e6, 5e6, 6e6, kMu, 0.0));
+  EXPECT_TRUE(gu_weng_crosses(75 * kDeg, 5e6 + 6e6, 5e6, 6e6, kMu, 3e6));
+}
+
 }  // namespace
 }  // namespace hfdda::analytical

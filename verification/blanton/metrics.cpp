@@ -6,6 +6,8 @@
 // joints_<variant>.csv (the joints that matter for the figures) for plot.py.
 
 #include <algorithm>
+#include <limits>
+#include <map>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -250,9 +252,15 @@ void compare_with_criteria(StudyOutcome& st) {
     if (std::isfinite(boundary) && boundary < 20e6) csv << label << ',' << theta << ',' << boundary / 1e6 << '\n';
   }
   csv << "Renshaw-Pollard crossing above (90 deg)," << 90 << ',' << rp / 1e6 << '\n';
+  std::map<int, double> gw_by_theta;  // Gu-Weng crossing stress per whole degree (infinite: never below 40 MPa)
+  for (int theta = 30; theta <= 90; ++theta) {
+    const auto c = analytical::gu_weng_critical_differential_stress(theta * std::numbers::pi / 180.0, sigma_h, t0, mu, 40e6);
+    gw_by_theta[theta] = c ? *c : std::numeric_limits<double>::infinity();
+    if (c && *c <= 20e6) csv << "Gu-Weng crossing above," << theta << ',' << *c / 1e6 << '\n';
+  }
   st.metrics.files["criteria.csv"] = csv.str();
 
-  int at_90 = 0, rp_agree = 0, map_runs = 0, wt_agree = 0;
+  int at_90 = 0, rp_agree = 0, map_runs = 0, wt_agree = 0, gw_runs = 0, gw_agree = 0;
   nlohmann::json disagree = nlohmann::json::array();
   for (const VariantOutcome& o : st.variants) {
     const VariantSpec& v = o.variant();
@@ -264,6 +272,13 @@ void compare_with_criteria(StudyOutcome& st) {
     const bool wt_opens = ds < analytical::warpinski_teufel_opening_differential_stress(theta * std::numbers::pi / 180.0, net);
     if (wt_opens == (mode == "opening")) ++wt_agree;
     else disagree.push_back(v.name + ": " + mode + ", Warpinski-Teufel " + (wt_opens ? "opening" : "no opening"));
+    const auto gw = gw_by_theta.find(static_cast<int>(std::lround(theta)));
+    if (gw != gw_by_theta.end()) {
+      ++gw_runs;
+      const bool gw_crosses = ds > gw->second;
+      if (gw_crosses == (mode == "crossing")) ++gw_agree;
+      else disagree.push_back(v.name + ": " + mode + ", Gu-Weng " + (gw_crosses ? "crossing" : "no crossing"));
+    }
     if (theta == 90.0) {
       ++at_90;
       const bool rp_crosses = ds > rp;
@@ -277,9 +292,12 @@ void compare_with_criteria(StudyOutcome& st) {
                                  {"renshaw_pollard_runs", at_90},
                                  {"warpinski_teufel_opening_agree", wt_agree},
                                  {"warpinski_teufel_opening_runs", map_runs},
+                                 {"gu_weng_agree", gw_agree},
+                                 {"gu_weng_runs", gw_runs},
                                  {"disagreements", disagree}};
   st.metrics.numbers["renshaw_pollard_agreement"] = at_90 ? double(rp_agree) / at_90 : kNaN;
   st.metrics.numbers["warpinski_teufel_opening_agreement"] = map_runs ? double(wt_agree) / map_runs : kNaN;
+  st.metrics.numbers["gu_weng_agreement"] = gw_runs ? double(gw_agree) / gw_runs : kNaN;
 }
 
 void study_metrics(StudyOutcome& st) {
