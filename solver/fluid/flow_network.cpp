@@ -25,7 +25,10 @@ struct FlowNetwork::Evaluation {
   /// mass balance in its own pressure from storage and flow to its neighbours.
   Eigen::VectorXd conductance;
   Eigen::VectorXd slope;  // per end: d aperture / d mechanical aperture (0 on the floor, 1 above it)
-  Eigen::MatrixXd jacobian;
+  /// The Jacobian in the unknowns is local + coupling S diag(pressure_slope)
+  /// (fluid/aperture_model.hpp): local (n x n) holds every term at fixed apertures,
+  /// coupling (n x 2 nf) how each end's aperture enters the nodes' mass balances.
+  Eigen::SparseMatrix<double> local, coupling;
 };
 
 FlowNetwork::FlowNetwork(int n_points, std::vector<Fracture> fractures, FluidProperties fluid, FlowSettings settings)
@@ -179,14 +182,14 @@ void FlowNetwork::rebuild_trial_topology() {
 // ----------------------------------------------------------------------------------
 // Mass balance and its Jacobian
 
-void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
+void FlowNetwork::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& base, const ApertureModel& s,
                            Evaluation& out, bool with_jacobian) const {
   evaluate_pressure(x, out);
   evaluate_aperture(base, s, out);
   evaluate_storage(x, out);
   evaluate_flow(out);
   if (!with_jacobian) return;
-  evaluate_jacobian(x, s, out);
+  evaluate_jacobian(x, out);
 }
 
 void FlowNetwork::evaluate_pressure(const Eigen::VectorXd& x, Evaluation& out) const {
@@ -211,11 +214,12 @@ void FlowNetwork::evaluate_pressure(const Eigen::VectorXd& x, Evaluation& out) c
   }
 }
 
-void FlowNetwork::evaluate_aperture(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, Evaluation& out) const {
+void FlowNetwork::evaluate_aperture(const Eigen::VectorXd& base, const ApertureModel& s, Evaluation& out) const {
   const int nf = static_cast<int>(trial_fractures_.size());
   // w = max(w_mechanics, floor), its corner rounded by a parabola within 1 % of the
   // floor (C1, exact outside that band) so that Newton sees a smooth mass balance.
-  out.aperture = base + s * out.pressure + hydraulic_width_;
+  s.apply(out.pressure, out.aperture);
+  out.aperture += base + hydraulic_width_;
   out.slope.resize(2 * nf);
   for (int e = 0; e < 2 * nf; ++e) {
     const double band = kFloorRounding * floor_[e];
@@ -268,7 +272,7 @@ void FlowNetwork::evaluate_flow(Evaluation& out) const {
   }
 }
 
-void FlowNetwork::evaluate_jacobian(const Eigen::VectorXd& x, const Eigen::MatrixXd& s, Evaluation& out) const {
+void FlowNetwork::evaluate_jacobian(const Eigen::VectorXd& x, Evaluation& out) const {
   const int n = static_cast<int>(trial_nodes_.size());
   const int nf = static_cast<int>(trial_fractures_.size());
   out.conductance = fluid_.density_derivative() * out.volume;
@@ -277,50 +281,57 @@ void FlowNetwork::evaluate_jacobian(const Eigen::VectorXd& x, const Eigen::Matri
     out.conductance[fracture_node_b_[k]] += flow_dt() * out.eta[k];
   }
 
-  // Derivatives with respect to the pressures p first, then by the chain rule to y.
+  // Derivatives with respect to the pressures p first (local and coupling), then by
+  // the chain rule to the unknowns y: the columns of both scale by dp/dy, which for
+  // the coupling part is the d of J = A + E S diag(d).
   const double drho = fluid_.density_derivative();
-  Eigen::MatrixXd& jac = out.jacobian;
-  jac.setZero(n, n);
-  for (int i = 0; i < n; ++i) jac(i, i) += homotopy_ * drho * wetted_fraction(x[i], i) * leak_volume_[i];
+  std::vector<Eigen::Triplet<double>> local, coupling;
+  local.reserve(n + 4 * nf);
+  coupling.reserve(6 * nf);
+  for (int i = 0; i < n; ++i) local.emplace_back(i, i, homotopy_ * drho * wetted_fraction(x[i], i) * leak_volume_[i]);
   for (int k = 0; k < nf; ++k) {
     const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
     for (int end = 0; end < 2; ++end) {
       const int i = end == 0 ? fracture_node_a_[k] : fracture_node_b_[k];
       if (out.slope[2 * k + end] > 0.0)
-        jac.row(i) += fill_density(x[i], i) * half * out.slope[2 * k + end] * s.row(2 * k + end);
+        coupling.emplace_back(i, 2 * k + end, fill_density(x[i], i) * half * out.slope[2 * k + end]);
     }
   }
-  add_flow_jacobian(s, out);
-  for (int i = 0; i < n; ++i) jac.col(i) *= out.pressure_slope[i];
+  add_flow_jacobian(out, local, coupling);
+  out.local.resize(n, n);
+  out.local.setFromTriplets(local.begin(), local.end());
+  out.coupling.resize(n, 2 * nf);
+  out.coupling.setFromTriplets(coupling.begin(), coupling.end());
+  out.local = out.local * out.pressure_slope.asDiagonal();
   for (int i = 0; i < n; ++i) {
-    jac(i, i) += fill_density_slope(x[i], i) * out.volume[i];  // storage
-    if (x[i] < 0.0) jac(i, i) += homotopy_ * out.density[i] * leak_volume_[i] / fill_scale_[i];  // wetted part
+    double diagonal = fill_density_slope(x[i], i) * out.volume[i];  // storage
+    if (x[i] < 0.0) diagonal += homotopy_ * out.density[i] * leak_volume_[i] / fill_scale_[i];  // wetted part
+    out.local.coeffRef(i, i) += diagonal;
   }
 }
 
-void FlowNetwork::add_flow_jacobian(const Eigen::MatrixXd& s, Evaluation& out) const {
-  const int n = static_cast<int>(trial_nodes_.size());
+void FlowNetwork::add_flow_jacobian(const Evaluation& out, std::vector<Eigen::Triplet<double>>& local,
+                                    std::vector<Eigen::Triplet<double>>& coupling) const {
   const int nf = static_cast<int>(trial_fractures_.size());
   const double drho = fluid_.density_derivative();
-  Eigen::MatrixXd& jac = out.jacobian;
-  Eigen::RowVectorXd deta(n);
   for (int k = 0; k < nf; ++k) {
     const int a = fracture_node_a_[k], b = fracture_node_b_[k];
     const double rho = 0.5 * (out.density[a] + out.density[b]);
     const double w = 0.5 * (out.aperture[2 * k] + out.aperture[2 * k + 1]);
-    deta.setZero();
-    if (out.slope[2 * k] > 0.0) deta += (1.5 * out.eta[k] / w * out.slope[2 * k]) * s.row(2 * k);
-    if (out.slope[2 * k + 1] > 0.0) deta += (1.5 * out.eta[k] / w * out.slope[2 * k + 1]) * s.row(2 * k + 1);
-    deta[a] += 0.5 * drho * out.eta[k] / rho;
-    deta[b] += 0.5 * drho * out.eta[k] / rho;
     const double dp = out.pressure[a] - out.pressure[b];
-    const Eigen::RowVectorXd d_outflow = flow_dt() * dp * deta;
-    jac.row(a) += d_outflow;
-    jac.row(b) -= d_outflow;
-    jac(a, a) += flow_dt() * out.eta[k];
-    jac(a, b) -= flow_dt() * out.eta[k];
-    jac(b, b) += flow_dt() * out.eta[k];
-    jac(b, a) -= flow_dt() * out.eta[k];
+    const double g = flow_dt() * out.eta[k];
+    // Outflow dt eta (p_a - p_b) from a to b: eta ~ rho w^3 (eq. 2.2).
+    for (int end = 0; end < 2; ++end)
+      if (out.slope[2 * k + end] > 0.0) {
+        const double d_outflow = flow_dt() * dp * 1.5 * out.eta[k] / w * out.slope[2 * k + end];
+        coupling.emplace_back(a, 2 * k + end, d_outflow);
+        coupling.emplace_back(b, 2 * k + end, -d_outflow);
+      }
+    const double d_density = flow_dt() * dp * 0.5 * drho * out.eta[k] / rho;
+    local.emplace_back(a, a, g + d_density);
+    local.emplace_back(a, b, -g + d_density);
+    local.emplace_back(b, b, g - d_density);
+    local.emplace_back(b, a, -g - d_density);
   }
 }
 
@@ -370,13 +381,13 @@ void FlowNetwork::rescale_partly_filled_nodes(Evaluation& ev) {
     if (scale == fill_scale_[i]) continue;
     // Storage and leak-off through the wetted walls both scale with the fill fraction.
     const double filled_slope = rho0 * ev.volume[i] + homotopy_ * ev.density[i] * leak_volume_[i];
-    ev.jacobian(i, i) += filled_slope * (1.0 / scale - 1.0 / fill_scale_[i]);
+    ev.local.coeffRef(i, i) += filled_slope * (1.0 / scale - 1.0 / fill_scale_[i]);
     fill_scale_[i] = scale;
     y = -deficit * scale;
   }
 }
 
-Eigen::VectorXd FlowNetwork::self_capacity(const Eigen::VectorXd& x, const Eigen::MatrixXd& s,
+Eigen::VectorXd FlowNetwork::self_capacity(const Eigen::VectorXd& x, const ApertureModel& s,
                                            const Evaluation& ev) const {
   // The slope of each node's mass balance in its own unknown, from the terms that are
   // positive whatever the state: compressibility, conductance to the neighbours, the
@@ -385,8 +396,8 @@ Eigen::VectorXd FlowNetwork::self_capacity(const Eigen::VectorXd& x, const Eigen
   for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
     const int a = fracture_node_a_[k], b = fracture_node_b_[k];
     const double half = 0.5 * fractures_[trial_fractures_[k]].length_m;
-    capacity[a] += std::max(0.0, fill_density(x[a], a) * half * ev.slope[2 * k] * s(2 * k, a));
-    capacity[b] += std::max(0.0, fill_density(x[b], b) * half * ev.slope[2 * k + 1] * s(2 * k + 1, b));
+    capacity[a] += std::max(0.0, fill_density(x[a], a) * half * ev.slope[2 * k] * s.self_entry(2 * k, a));
+    capacity[b] += std::max(0.0, fill_density(x[b], b) * half * ev.slope[2 * k + 1] * s.self_entry(2 * k + 1, b));
   }
   for (Eigen::Index i = 0; i < x.size(); ++i)
     if (x[i] < 0.0)
@@ -394,7 +405,7 @@ Eigen::VectorXd FlowNetwork::self_capacity(const Eigen::VectorXd& x, const Eigen
   return capacity;
 }
 
-bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
+bool FlowNetwork::newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
                          NewtonProgress& progress, bool pseudo_transient) {
   const int n = static_cast<int>(trial_nodes_.size());
   const double mass_scale = std::max(old_mass_.sum() + injected_.sum(), 1e-300);
@@ -404,9 +415,9 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
   const double round_off = residual_round_off();
   Evaluation ev, trial;
   Eigen::VectorXd& x = unknowns_;
-  auto solve_linear = [&](const Eigen::MatrixXd& jacobian) {
-    Eigen::VectorXd dx = jacobian.partialPivLu().solve(-ev.residual);
-    if (!dx.allFinite()) throw ConvergenceError("fluid flow: singular mass-balance Jacobian");
+  auto solve_linear = [&](const Eigen::SparseMatrix<double>& local) {
+    s.factorize(local, ev.coupling, ev.pressure_slope);
+    Eigen::VectorXd dx = s.solve(-ev.residual);
     ++stats.newton_iterations;
     return dx;
   };
@@ -416,7 +427,7 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
   // its own balance (a node short of fluid fills up, even where the full Jacobian
   // points the other way); a vanishing shift is Newton.
   double shift = 1.0;
-  Eigen::MatrixXd shifted;
+  Eigen::SparseMatrix<double> shifted;
   const int max_iterations = pseudo_transient ? 4 * settings_.max_newton_iterations : settings_.max_newton_iterations;
   for (int it = 0; it < max_iterations; ++it) {
     evaluate(x, base, s, ev, true);
@@ -429,8 +440,8 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
     if (pseudo_transient) {
       const Eigen::VectorXd capacity = self_capacity(x, s, ev);
       for (int attempt = 0; attempt < 30; ++attempt) {
-        shifted = ev.jacobian;
-        shifted.diagonal() += shift * capacity;
+        shifted = ev.local;
+        for (int i = 0; i < n; ++i) shifted.coeffRef(i, i) += shift * capacity[i];
         dx = solve_linear(shifted);
         if (converged_residual) break;
         evaluate(x + dx, base, s, trial, false);
@@ -444,7 +455,7 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
     } else {
       // Backtracking on the mass residual: apertures and transmissivities have kinks at
       // the minimum widths, where full Newton steps may overshoot.
-      dx = solve_linear(ev.jacobian);
+      dx = solve_linear(ev.local);
       for (int cut = 0; cut < 30 && !converged_residual; ++cut, alpha *= 0.5) {
         evaluate(x + alpha * dx, base, s, trial, false);
         if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit) break;
@@ -466,9 +477,14 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, 
 }
 
 FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, const Eigen::MatrixXd& s) {
+  DenseApertureModel model(s);
+  return solve(base, model);
+}
+
+FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, ApertureModel& s) {
   const int n = static_cast<int>(trial_nodes_.size());
   const int nf = static_cast<int>(trial_fractures_.size());
-  if (base.size() != 2 * nf || s.rows() != 2 * nf || s.cols() != n)
+  if (base.size() != 2 * nf || s.n_ends() != 2 * nf || s.n_nodes() != n)
     throw std::invalid_argument("FlowNetwork::solve: aperture model does not match the trial network");
   FlowSolveStatistics stats;
   if (n == 0) return stats;

@@ -40,8 +40,11 @@
 // Units SI, per metre of out-of-plane thickness (h = 1 m in eq. 2.2-2.3).
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <string>
 #include <vector>
+
+#include "fluid/aperture_model.hpp"
 
 namespace hfdda {
 class BinaryWriter;
@@ -118,6 +121,8 @@ class FlowNetwork {
   /// Solves the step's mass balance for the aperture model w = base + S p (S has one
   /// column per trial node). Throws ConvergenceError.
   FlowSolveStatistics solve(const Eigen::VectorXd& base_aperture_m, const Eigen::MatrixXd& sensitivity_m_Pa);
+  /// The same with S given as a model (dense or an operator; fluid/aperture_model.hpp).
+  FlowSolveStatistics solve(const Eigen::VectorXd& base_aperture_m, ApertureModel& sensitivity);
   /// Trial pressures per trial node [Pa] (0 at zero-pressure nodes).
   const Eigen::VectorXd& trial_pressure() const { return pressure_; }
   /// Pressurised in the trial: in the network, above zero pressure.
@@ -170,29 +175,31 @@ class FlowNetwork {
  private:
   struct Evaluation;
   void rebuild_trial_topology();
-  void evaluate(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
+  void evaluate(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& base, const ApertureModel& s,
                 Evaluation& out, bool with_jacobian) const;
   /// Pieces of evaluate, in its order: pressure of the fill state, floored apertures,
   /// storage and the node terms of the residual, flow between nodes, Jacobian.
   void evaluate_pressure(const Eigen::VectorXd& unknowns, Evaluation& out) const;
-  void evaluate_aperture(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, Evaluation& out) const;
+  void evaluate_aperture(const Eigen::VectorXd& base, const ApertureModel& s, Evaluation& out) const;
   void evaluate_storage(const Eigen::VectorXd& unknowns, Evaluation& out) const;
   void evaluate_flow(Evaluation& out) const;
-  void evaluate_jacobian(const Eigen::VectorXd& unknowns, const Eigen::MatrixXd& s, Evaluation& out) const;
-  /// Adds the derivatives of the flow between nodes to out.jacobian (in the pressures).
-  void add_flow_jacobian(const Eigen::MatrixXd& s, Evaluation& out) const;
+  void evaluate_jacobian(const Eigen::VectorXd& unknowns, Evaluation& out) const;
+  /// Adds the derivatives of the flow between nodes (in the pressures) to the local and
+  /// coupling parts of the Jacobian.
+  void add_flow_jacobian(const Evaluation& out, std::vector<Eigen::Triplet<double>>& local,
+                         std::vector<Eigen::Triplet<double>>& coupling) const;
   struct NewtonProgress {
     double residual = 0.0, change = 0.0, max_pressure = 0.0;  // of the last iteration
   };
   /// Newton from the current unknowns, with line search or as pseudo-transient
   /// continuation; false if it did not converge.
-  bool newton(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
+  bool newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
               NewtonProgress& progress, bool pseudo_transient);
   /// Per node: the positive part of the slope of its mass balance in its own unknown
   /// (the pseudo-transient shift's scale).
-  Eigen::VectorXd self_capacity(const Eigen::VectorXd& x, const Eigen::MatrixXd& s, const Evaluation& ev) const;
+  Eigen::VectorXd self_capacity(const Eigen::VectorXd& x, const ApertureModel& s, const Evaluation& ev) const;
   /// Newton along lambda = 0 -> 1 (homotopy_); false if a stage could not be solved.
-  bool continuation(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
+  bool continuation(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
                     NewtonProgress& progress);
   /// Scale of the step's inflows, leak-off and flow in the mass balance (1 except
   /// during continuation), and the flow's time factor it gives.
@@ -200,7 +207,7 @@ class FlowNetwork {
   double flow_dt() const { return homotopy_ * dt_s_; }
   /// Newton, then pseudo-transient continuation, flooded starts and continuation in
   /// the step's inflows if needed; throws ConvergenceError.
-  void solve_mass_balance(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats);
+  void solve_mass_balance(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats);
   /// Stored mass per volume of a node in fill state y, and its derivative in y.
   double fill_density(double y, int node) const;
   double fill_density_slope(double y, int node) const;

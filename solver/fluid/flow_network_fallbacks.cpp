@@ -9,7 +9,7 @@
 
 namespace hfdda::fluid {
 
-bool FlowNetwork::continuation(const Eigen::VectorXd& base, const Eigen::MatrixXd& s, FlowSolveStatistics& stats,
+bool FlowNetwork::continuation(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
                                NewtonProgress& progress) {
   struct Restore {
     double& value;
@@ -34,7 +34,7 @@ bool FlowNetwork::continuation(const Eigen::VectorXd& base, const Eigen::MatrixX
   return true;
 }
 
-void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, const Eigen::MatrixXd& s,
+void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel& s,
                                      FlowSolveStatistics& stats) {
   const Eigen::VectorXd start = unknowns_, start_scale = fill_scale_;
   NewtonProgress progress;

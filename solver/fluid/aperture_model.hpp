@@ -1,0 +1,58 @@
+#pragma once
+// How the flow network sees the rock: the apertures of the wetted fracture ends as an
+// affine function of the nodal pressures, w = base + S p (exact for the linear block
+// system while its contacts are fixed; seed 2.4), and the linear solves of the flow
+// Newton iteration whose Jacobian couples through S:
+//
+//     J = A + E S diag(d)
+//
+// A (n x n, sparse): storage, leak-off and flow between nodes at fixed apertures;
+// E (n x 2 nf, sparse): how each end's aperture enters the mass balance of the nodes;
+// d (n): the slope of the pressure in each node's unknown (0 at zero-pressure nodes).
+// S itself may be a dense matrix (DenseApertureModel) or an operator whose products
+// cost one solve with the factorised block stiffness (coupling/aperture_operator.hpp).
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+
+namespace hfdda::fluid {
+
+class ApertureModel {
+ public:
+  virtual ~ApertureModel() = default;
+  /// Number of fracture ends (rows of S) and of nodes (columns of S).
+  virtual int n_ends() const = 0;
+  virtual int n_nodes() const = 0;
+  /// out = S p [m].
+  virtual void apply(const Eigen::VectorXd& pressure_Pa, Eigen::VectorXd& out_m) const = 0;
+  /// S(end, node) for an end at that node: its compliance to its own node's pressure [m/Pa].
+  virtual double self_entry(int end, int node) const = 0;
+  /// Prepares solves with J = A + E S diag(d). Throws ConvergenceError if J is singular.
+  virtual void factorize(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
+                         const Eigen::VectorXd& d) = 0;
+  /// x = J^-1 r with the last factorize. Throws ConvergenceError if it fails.
+  virtual Eigen::VectorXd solve(const Eigen::VectorXd& r) = 0;
+  /// Products with S and inner linear iterations since construction (operator models).
+  virtual long products() const { return 0; }
+  virtual long linear_iterations() const { return 0; }
+};
+
+/// S held as a dense matrix; J formed densely and factorised by LU with partial pivoting.
+class DenseApertureModel final : public ApertureModel {
+ public:
+  explicit DenseApertureModel(const Eigen::MatrixXd& sensitivity_m_Pa) : s_(sensitivity_m_Pa) {}
+  int n_ends() const override { return static_cast<int>(s_.rows()); }
+  int n_nodes() const override { return static_cast<int>(s_.cols()); }
+  void apply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const override { out.noalias() = s_ * p; }
+  double self_entry(int end, int node) const override { return s_(end, node); }
+  void factorize(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
+                 const Eigen::VectorXd& d) override;
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) override;
+
+ private:
+  const Eigen::MatrixXd& s_;
+  Eigen::MatrixXd jacobian_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+};
+
+}  // namespace hfdda::fluid
