@@ -14,8 +14,8 @@ double seconds_since(Clock::time_point start) {
 constexpr int kColumnsPerSolve = 64;
 }  // namespace
 
-HydroMechanicalCoupling::HydroMechanicalCoupling(fluid::FlowNetwork& network)
-    : network_(network), pressurised_(network.n_points(), 0) {}
+HydroMechanicalCoupling::HydroMechanicalCoupling(fluid::FlowNetwork& network, FlowJacobian jacobian)
+    : network_(network), jacobian_(jacobian), pressurised_(network.n_points(), 0) {}
 
 void HydroMechanicalCoupling::refresh_pressurised() {
   std::fill(pressurised_.begin(), pressurised_.end(), 0);
@@ -63,6 +63,20 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     }
   }
 
+  nodes_of_fracture_.resize(nf);
+  for (int k = 0; k < nf; ++k) {
+    const auto& joint = system.mesh().joints[fractures[k]];
+    nodes_of_fracture_[k] = {network_.node_index(joint.point_p), network_.node_index(joint.point_q)};
+  }
+  if (use_krylov()) {
+    operator_ = std::make_unique<ApertureOperator>(system, gaps_, loads_, nodes_of_fracture_);
+    sensitivity_.resize(0, 0);
+    topology_changed_ = false;
+    stats_.seconds_sensitivity += seconds_since(start);
+    return;
+  }
+  operator_.reset();
+
   // S = J K^-1 B, a few dozen columns per solve.
   sensitivity_.setZero(2 * nf, n);
   Eigen::MatrixXd rhs;
@@ -91,7 +105,15 @@ void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::Vec
     base[e] = g.gap0_m + g.row_a.dot(d.segment<6>(6 * g.block_a)) +
               g.row_b.dot(d.segment<6>(6 * g.block_b));
   }
-  const fluid::FlowSolveStatistics fs = network_.solve(base, sensitivity_);
+  fluid::FlowSolveStatistics fs;
+  if (operator_) {
+    const long products = operator_->products(), iterations = operator_->linear_iterations();
+    fs = network_.solve(base, *operator_);
+    stats_.sensitivity_products += operator_->products() - products;
+    stats_.krylov_iterations += operator_->linear_iterations() - iterations;
+  } else {
+    fs = network_.solve(base, sensitivity_);
+  }
   ++stats_.flow_solves;
   stats_.newton_iterations += fs.newton_iterations;
   stats_.newton_restarts += fs.restarts;

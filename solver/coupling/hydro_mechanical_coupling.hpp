@@ -14,13 +14,23 @@
 // open-close loop) add the joints the fluid reaches: a joint joins the network once
 // one of its end contacts is open at a pressurised node (Figure 2.8).
 
+#include <array>
+#include <memory>
 #include <vector>
 
+#include "coupling/aperture_operator.hpp"
 #include "coupling/fluid_load_model.hpp"
 #include "dda/block_system.hpp"
 #include "fluid/flow_network.hpp"
 
 namespace hfdda::coupling {
+
+/// How the flow Newton's linear systems are solved (docs/design_notes.md, "Flow Jacobian"):
+/// dense: S formed (one solve per node, 64 at a time) and J factorised by dense LU;
+/// krylov: S as an operator, GMRES with the two-level preconditioner (aperture_operator.hpp).
+/// Dense is the default: where the flow Newton needs hundreds of iterations a step (junctions,
+/// fluid-filled starts) the operator's one solve per product loses to it (measured in the notes).
+enum class FlowJacobian { dense, krylov };
 
 struct CouplingStatistics {
   int flow_solves = 0;            ///< one per ALM iteration
@@ -31,13 +41,15 @@ struct CouplingStatistics {
   double max_relative_residual = 0.0;
   double seconds_sensitivity = 0.0;  ///< building S = J K^-1 B
   double seconds_flow = 0.0;
+  long sensitivity_products = 0;  ///< products with the operator S (krylov)
+  long krylov_iterations = 0;
 };
 
 /// Couples a FlowNetwork whose fractures are the mesh joints (same indices) with the
 /// block system it is passed to.
 class HydroMechanicalCoupling final : public FluidLoadModel {
  public:
-  explicit HydroMechanicalCoupling(fluid::FlowNetwork& network);
+  explicit HydroMechanicalCoupling(fluid::FlowNetwork& network, FlowJacobian jacobian = FlowJacobian::dense);
 
   void begin_step(dda::BlockSystem& system, double dt_s) override;
   void prepare(const dda::BlockSystem& system, bool stiffness_changed) override;
@@ -55,17 +67,17 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   const fluid::FlowNetwork& network() const { return network_; }
 
  private:
-  struct NodeLoad {  // block forces of a unit pressure at one node
-    int block;
-    dda::Vec6 force;
-  };
   void refresh_pressurised();
+  bool use_krylov() const { return jacobian_ == FlowJacobian::krylov; }
 
   fluid::FlowNetwork& network_;
+  FlowJacobian jacobian_;
   bool topology_changed_ = true;
   std::vector<dda::JointEndGap> gaps_;           // per trial fracture end
   std::vector<std::vector<NodeLoad>> loads_;     // per trial node
-  Eigen::MatrixXd sensitivity_;                  // S = J K^-1 B [m/Pa]
+  Eigen::MatrixXd sensitivity_;                  // S = J K^-1 B [m/Pa] (dense path)
+  std::vector<std::array<int, 2>> nodes_of_fracture_;  // per trial fracture
+  std::unique_ptr<ApertureOperator> operator_;   // S as an operator (krylov path)
   Eigen::VectorXd work_;
   std::vector<char> pressurised_;
   CouplingStatistics stats_;

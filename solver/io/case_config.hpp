@@ -211,6 +211,8 @@ struct ContactConfig {
 };
 
 enum class AnalysisKind { static_analysis, dynamic_analysis };
+/// How the flow Newton's linear systems are solved (coupling::FlowJacobian).
+enum class FlowJacobianKind { dense, krylov };
 
 struct NumericsConfig {
   AnalysisKind analysis = AnalysisKind::static_analysis;  ///< static: velocities reset each step
@@ -228,6 +230,7 @@ struct NumericsConfig {
   double max_closing_fraction = 0.05;   ///< an aperture may close by at most this per step
   double coupling_tolerance = 1.0e-9;   ///< relative pressure change and mass residual (erratum 2)
   int max_coupling_iterations = 60;     ///< Newton iterations on the pressures per solve
+  FlowJacobianKind flow_jacobian = FlowJacobianKind::dense;  ///< dense S or S as an operator
   int max_step_cuts = 4;                ///< a failed step is retried with dt halved this often
 };
 

@@ -437,6 +437,14 @@ const Table<NumericsConfig>& numerics_table() {
                "coupled-step stop: relative pressure change and relative mass residual "
                "below it"},
               &NumericsConfig::coupling_tolerance, positive_up_to(1)),
+       choice({"flow_jacobian", "", "",
+               "linear solves of the flow Newton iteration: dense (the aperture sensitivity S formed, "
+               "one solve per wetted node, and the Jacobian factorised densely), krylov (S as an operator, "
+               "one solve per product, GMRES with a two-level preconditioner; memory and cost grow with the "
+               "network, not its square; it pays off only where the flow Newton needs few iterations)"},
+              &NumericsConfig::flow_jacobian,
+              Choices<FlowJacobianKind>{{"dense", FlowJacobianKind::dense},
+                                        {"krylov", FlowJacobianKind::krylov}}),
        integer({"max_coupling_iterations", "", "§2.4", "pressure iterations per coupled solve"},
                &NumericsConfig::max_coupling_iterations, interval(1, false, kMaxIterations, false)),
        integer({"max_step_cuts", "", "",

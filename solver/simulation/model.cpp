@@ -259,7 +259,9 @@ void build_flow_network(Model& model, const io::CaseConfig& c) {
     model.injection_points.push_back(point);
   }
   for (const auto& probe : c.probes) model.probe_points.push_back(mesh::nearest_point(m, probe.at));
-  model.coupling = std::make_unique<coupling::HydroMechanicalCoupling>(*model.flow);
+  const auto jacobian = c.numerics.flow_jacobian == io::FlowJacobianKind::krylov ? coupling::FlowJacobian::krylov
+                                                                               : coupling::FlowJacobian::dense;
+  model.coupling = std::make_unique<coupling::HydroMechanicalCoupling>(*model.flow, jacobian);
 }
 
 }  // namespace

@@ -1,0 +1,153 @@
+#include "coupling/aperture_operator.hpp"
+
+#include <unsupported/Eigen/IterativeSolvers>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include "core/errors.hpp"
+
+namespace hfdda::coupling {
+
+namespace {
+/// Relative tolerance of the preconditioned linear residual: well below the flow
+/// Newton's own 1e-9 on pressure changes needs, so that Newton converges as with
+/// exact solves (the last Newton steps are tiny and solved to this relative accuracy).
+constexpr double kLinearTolerance = 1e-10;
+constexpr int kMaxLinearIterations = 400;
+constexpr int kRestart = 80;
+
+/// The Jacobian and the preconditioner in the forms Eigen's GMRES expects.
+struct JacobianProduct {
+  const ApertureOperator* op;
+  Eigen::Index rows() const { return op->n_nodes(); }
+  Eigen::Index cols() const { return op->n_nodes(); }
+  Eigen::VectorXd operator*(const Eigen::VectorXd& v) const { return op->jacobian_times(v); }
+};
+struct TwoLevel {
+  const ApertureOperator* op;
+  Eigen::VectorXd solve(const Eigen::VectorXd& v) const { return op->precondition(v); }
+};
+}  // namespace
+
+ApertureOperator::ApertureOperator(const dda::BlockSystem& system, const std::vector<dda::JointEndGap>& gaps,
+                                   const std::vector<std::vector<NodeLoad>>& loads,
+                                   const std::vector<std::array<int, 2>>& nodes_of_fracture)
+    : system_(system), gaps_(gaps), loads_(loads) {
+  build_aggregates(nodes_of_fracture);
+  // S P: one solve with as many right-hand sides as aggregates.
+  const int m = n_aggregates(), nb = system_.n_blocks();
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(6 * nb, m);
+  for (int i = 0; i < n_nodes(); ++i)
+    for (const NodeLoad& l : loads_[i]) rhs.block<6, 1>(6 * l.block, aggregate_[i]) += l.force;
+  const Eigen::MatrixXd x = system_.solver().solve(rhs);
+  s_times_p_.resize(n_ends(), m);
+  for (int e = 0; e < n_ends(); ++e) {
+    const auto& g = gaps_[e];
+    s_times_p_.row(e) = g.row_a * x.middleRows<6>(6 * g.block_a) + g.row_b * x.middleRows<6>(6 * g.block_b);
+  }
+  rhs_.setZero(6 * nb);
+}
+
+void ApertureOperator::build_aggregates(const std::vector<std::array<int, 2>>& nodes_of_fracture) {
+  // Breadth-first along the network from the lowest unassigned node, closing an
+  // aggregate at the target size: connected groups of about sqrt(n) / 2 nodes.
+  const int n = n_nodes();
+  std::vector<std::vector<int>> neighbours(n);
+  for (const auto& [a, b] : nodes_of_fracture) {
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  }
+  const int target = std::max(4, static_cast<int>(std::ceil(0.5 * std::sqrt(static_cast<double>(n)))));
+  aggregate_.assign(n, -1);
+  aggregate_size_.clear();
+  for (int seed = 0; seed < n; ++seed) {
+    if (aggregate_[seed] >= 0) continue;
+    const int id = static_cast<int>(aggregate_size_.size());
+    int size = 0;
+    std::deque<int> queue{seed};
+    aggregate_[seed] = id;
+    while (!queue.empty() && size < target) {
+      const int i = queue.front();
+      queue.pop_front();
+      ++size;
+      for (int j : neighbours[i])
+        if (aggregate_[j] < 0 && size + static_cast<int>(queue.size()) < target) {
+          aggregate_[j] = id;
+          queue.push_back(j);
+        }
+    }
+    size += static_cast<int>(queue.size());  // assigned but not expanded
+    aggregate_size_.push_back(size);
+  }
+}
+
+void ApertureOperator::apply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const {
+  rhs_.setZero();
+  for (int i = 0; i < n_nodes(); ++i)
+    if (p[i] != 0.0)
+      for (const NodeLoad& l : loads_[i]) rhs_.segment<6>(6 * l.block) += p[i] * l.force;
+  const Eigen::VectorXd u = system_.solver().solve(rhs_);
+  ++products_;
+  out.resize(n_ends());
+  for (int e = 0; e < n_ends(); ++e) {
+    const auto& g = gaps_[e];
+    out[e] = g.row_a.dot(u.segment<6>(6 * g.block_a)) + g.row_b.dot(u.segment<6>(6 * g.block_b));
+  }
+}
+
+double ApertureOperator::self_entry(int end, int node) const {
+  const int c = aggregate_[node];
+  return s_times_p_(end, c) / aggregate_size_[c];
+}
+
+void ApertureOperator::factorize(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
+                                 const Eigen::VectorXd& d) {
+  a_ = a, e_ = e, d_ = d;
+  const int n = n_nodes(), m = n_aggregates();
+  local_lu_.compute(a_);
+  if (local_lu_.info() != Eigen::Success) throw ConvergenceError("fluid flow: singular local part of the mass-balance Jacobian");
+  // Coarse: P^T A P + P^T E (S P) diag(d_c).
+  d_coarse_.setZero(m);
+  for (int i = 0; i < n; ++i) d_coarse_[aggregate_[i]] += d_[i] / aggregate_size_[aggregate_[i]];
+  Eigen::MatrixXd coarse = Eigen::MatrixXd::Zero(m, m);
+  for (int k = 0; k < a_.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a_, k); it; ++it)
+      coarse(aggregate_[it.row()], aggregate_[it.col()]) += it.value();
+  Eigen::MatrixXd pe = Eigen::MatrixXd::Zero(m, n_ends());  // P^T E
+  for (int k = 0; k < e_.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(e_, k); it; ++it) pe(aggregate_[it.row()], it.col()) += it.value();
+  coarse.noalias() += pe * s_times_p_ * d_coarse_.asDiagonal();
+  coarse_lu_.compute(coarse);
+}
+
+Eigen::VectorXd ApertureOperator::jacobian_times(const Eigen::VectorXd& v) const {
+  Eigen::VectorXd w;
+  apply(d_.cwiseProduct(v), w);
+  return a_ * v + e_ * w;
+}
+
+Eigen::VectorXd ApertureOperator::precondition(const Eigen::VectorXd& v) const {
+  const int n = n_nodes(), m = n_aggregates();
+  Eigen::VectorXd coarse_rhs = Eigen::VectorXd::Zero(m);
+  for (int i = 0; i < n; ++i) coarse_rhs[aggregate_[i]] += v[i];
+  const Eigen::VectorXd z = coarse_lu_.solve(coarse_rhs);
+  Eigen::VectorXd y(n);
+  for (int i = 0; i < n; ++i) y[i] = z[aggregate_[i]];
+  // The residual of the coarse correction under the coarse model of J (S P precomputed).
+  const Eigen::VectorXd residual = v - a_ * y - e_ * (s_times_p_ * d_coarse_.cwiseProduct(z));
+  return y + local_lu_.solve(residual);
+}
+
+Eigen::VectorXd ApertureOperator::solve(const Eigen::VectorXd& r) {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n_nodes());
+  Eigen::Index iterations = kMaxLinearIterations;
+  double error = kLinearTolerance;
+  Eigen::internal::gmres(JacobianProduct{this}, r, x, TwoLevel{this}, iterations, kRestart, error);
+  iterations_ += iterations;
+  if (!x.allFinite()) throw ConvergenceError("fluid flow: the Krylov solve of the mass balance diverged");
+  return x;
+}
+
+}  // namespace hfdda::coupling
