@@ -5,15 +5,14 @@
 // achieved lengths within a joint of their targets, reproducibility from the seed, the
 // validation of the settings and case-file keys, and the set's values on the model's joints.
 
-#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_rng.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <numbers>
-#include <set>
 #include <string>
 #include <vector>
 
