@@ -2,6 +2,8 @@
 //   hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--force | --restart]
 //   hfdda check CASE.yaml                      validate the case and build its mesh
 //   hfdda plot DIR [--times ...] [--out ...]   figures of a run directory (hfdda_plot.py)
+//   hfdda network CASE.yaml --out DIR [--force] [--no-figure]
+//                                              the case's generated fracture network
 // Exit codes: 0 success, 1 the run stopped (no convergence), 2 bad input or usage,
 // 3 stopped by SIGINT/SIGTERM after a step, with a checkpoint to restart from.
 
@@ -9,6 +11,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -23,6 +26,7 @@
 #include "io/case_config.hpp"
 #include "simulation/checkpoint.hpp"
 #include "simulation/model.hpp"
+#include "simulation/network_outputs.hpp"
 #include "simulation/run.hpp"
 
 namespace {
@@ -31,6 +35,7 @@ constexpr const char* kUsage =
     "usage: hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--force | --restart]\n"
     "       hfdda check CASE.yaml\n"
     "       hfdda plot DIR [--times T1,T2,...] [--out FIGDIR]\n"
+    "       hfdda network CASE.yaml --out DIR [--force] [--no-figure]\n"
     "       hfdda --help | --version\n"
     "\n"
     "run    validates CASE.yaml, builds the mesh and runs the DDA time loop, writing\n"
@@ -45,6 +50,11 @@ constexpr const char* kUsage =
     "check  validates CASE.yaml and builds its mesh without writing anything.\n"
     "plot   draws a run directory's fracture map at the output nearest each time (default: the\n"
     "       last) and its histories, as PNG files in FIGDIR (default DIR/figures).\n"
+    "network  builds the mesh of CASE.yaml and grows the natural fractures of its fracture_sets\n"
+    "       (seed 5.3), without running anything, and writes DIR/network.csv (joints of each\n"
+    "       fracture), DIR/network_fractures.csv, DIR/network_sets.csv, DIR/network.vtu (every\n"
+    "       joint with its set) and DIR/network.png (--no-figure: none). A non-empty DIR is\n"
+    "       refused; --force empties it first.\n"
     "Case-file keys: docs/case_file.md. Exit: 0 ok, 1 run stopped, 2 bad input or unusable DIR,\n"
     "3 interrupted (checkpoint written).\n";
 
@@ -230,29 +240,30 @@ int run_command(int argc, char** argv, bool check_only) {
 
 }  // namespace
 
-/// `hfdda plot DIR [--times ...] [--out ...]`: runs hfdda_plot.py, found next to this
-/// executable, with Debian's Python (the one that sees python3-matplotlib).
-int plot_command(int argc, char** argv) {
-  if (argc < 3) return usage_error("plot: give the run directory");
+/// Runs `script` (found next to this executable) with Debian's Python, the one that sees
+/// python3-matplotlib, and `arguments`; its exit code (2 when it cannot be run).
+int run_python_script(const char* command, const std::string& script_name, const std::vector<std::string>& arguments) {
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const std::filesystem::path script = exe.parent_path() / "hfdda_plot.py";
+  const std::filesystem::path script = exe.parent_path() / script_name;
   if (ec || !std::filesystem::exists(script)) {
-    std::fprintf(stderr, "hfdda: plot: %s not found (it is copied next to the hfdda binary by the build)\n",
+    std::fprintf(stderr, "hfdda: %s: %s not found (it is copied next to the hfdda binary by the build)\n", command,
                  script.c_str());
     return 2;
   }
   const char* python = "/usr/bin/python3";
   if (access(python, X_OK) != 0) {
-    std::fprintf(stderr, "hfdda: plot: %s not found; install Debian's python3 and python3-matplotlib\n", python);
+    std::fprintf(stderr, "hfdda: %s: %s not found; install Debian's python3 and python3-matplotlib\n", command,
+                 python);
     return 2;
   }
   std::vector<std::string> args{python, script.string()};
-  for (int i = 2; i < argc; ++i) args.emplace_back(argv[i]);
+  args.insert(args.end(), arguments.begin(), arguments.end());
   std::vector<char*> c_args;
   for (std::string& a : args) c_args.push_back(a.data());
   c_args.push_back(nullptr);
   std::fflush(stdout);
+  std::fflush(stderr);
   const pid_t pid = fork();
   if (pid < 0) return 2;
   if (pid == 0) {
@@ -263,6 +274,103 @@ int plot_command(int argc, char** argv) {
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   return WIFEXITED(status) ? WEXITSTATUS(status) : 2;
+}
+
+/// `hfdda plot DIR [--times ...] [--out ...]`: runs hfdda_plot.py.
+int plot_command(int argc, char** argv) {
+  if (argc < 3) return usage_error("plot: give the run directory");
+  return run_python_script("plot", "hfdda_plot.py", std::vector<std::string>(argv + 2, argv + argc));
+}
+
+/// Makes DIR ready for `hfdda network`: created if missing; refused if it is not a
+/// directory, or holds anything unless `force` (then emptied). The reason if unusable.
+std::string prepare_network_directory(const std::string& dir, bool force, std::filesystem::path& created) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path path(dir);
+  created.clear();
+  for (fs::path p = absolute_directory(dir, ec); !ec && !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    created = p;
+    if (p == p.parent_path()) break;
+  }
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) return "output '" + dir + "' exists and is not a directory";
+  if (fs::is_directory(path, ec) && !fs::is_empty(path, ec)) {
+    if (!force) return "output directory '" + dir + "' is not empty; give --force to empty it first";
+    for (const auto& entry : fs::directory_iterator(path, ec)) {
+      fs::remove_all(entry.path(), ec);
+      if (ec) return "cannot empty '" + dir + "': " + entry.path().string() + ": " + ec.message();
+    }
+  }
+  fs::create_directories(path, ec);
+  if (ec) {
+    created.clear();
+    return "cannot create output directory '" + dir + "': " + ec.message();
+  }
+  const std::string probe = dir + "/.hfdda-write-test." + std::to_string(::getpid());
+  std::FILE* file = std::fopen(probe.c_str(), "wb");
+  if (file == nullptr) return "output directory '" + dir + "' is not writable: " + std::strerror(errno);
+  std::fclose(file);
+  std::remove(probe.c_str());
+  return {};
+}
+
+/// `hfdda network CASE.yaml --out DIR [--force] [--no-figure]`: the mesh and the generated
+/// fracture network of a case, written without building the block system or any fluid.
+int network_command(int argc, char** argv) {
+  std::string case_file, out_dir;
+  bool force = false, figure = true;
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--out" && i + 1 < argc) out_dir = argv[++i];
+    else if (arg == "--force") force = true;
+    else if (arg == "--no-figure") figure = false;
+    else if (!arg.empty() && arg[0] == '-') return usage_error("network: unknown option '" + arg + "'");
+    else if (case_file.empty()) case_file = arg;
+    else return usage_error("network: more than one case file given");
+  }
+  if (case_file.empty()) return usage_error("network: no case file given");
+  if (out_dir.empty()) return usage_error("network needs --out DIR");
+  const auto start = std::chrono::steady_clock::now();
+  const hfdda::io::CaseConfig config = hfdda::io::load_case_file(case_file);
+  if (config.fracture_sets.empty())
+    throw hfdda::InputError(case_file, 0, "fracture_sets",
+                            "hfdda network needs at least one fracture set (the case has none)");
+  std::filesystem::path created;
+  const std::string problem = prepare_network_directory(out_dir, force, created);
+  if (!problem.empty()) {
+    std::fprintf(stderr, "hfdda: %s\n", problem.c_str());
+    return 2;
+  }
+  const hfdda::simulation::FracturedMesh fractured = [&] {
+    try {
+      return hfdda::simulation::build_fractured_mesh(config);
+    } catch (...) {
+      remove_created_directories(out_dir, created);
+      throw;
+    }
+  }();
+  hfdda::simulation::write_network_outputs(out_dir, config, fractured);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "%s: %zu blocks, %zu joints; network seed %d\n", case_file.c_str(),
+               fractured.mesh.blocks.size(), fractured.mesh.joints.size(), config.network_seed);
+  for (std::size_t k = 0; k < config.fracture_sets.size(); ++k) {
+    const auto& s = fractured.network.sets[k];
+    std::fprintf(stderr,
+                 "  set %s (azimuth %g deg): %d candidates, %d seeds (%d on joints already taken), %d fractures "
+                 "(%d reached their length), %d joints, %.1f m\n",
+                 config.fracture_sets[k].name.c_str(), config.fracture_sets[k].azimuth_deg, s.candidates, s.seeds,
+                 s.absorbed_seeds, s.fractures, s.fractures_reaching_target, s.joints, s.total_length_m);
+  }
+  std::fprintf(stderr, "case, mesh, network and files in %.3f s; files in %s\n", seconds, out_dir.c_str());
+  if (!figure) return 0;
+  const hfdda::Rect& d = config.domain.outer;
+  char domain[160];
+  std::snprintf(domain, sizeof domain, "%.17g,%.17g,%.17g,%.17g", d.xmin, d.xmax, d.ymin, d.ymax);
+  const std::string title = std::filesystem::path(case_file).filename().string() + ", network seed " +
+                            std::to_string(config.network_seed);
+  const int code = run_python_script("network", "hfdda_network_plot.py", {out_dir, std::string("--domain=") + domain, "--title=" + title});
+  if (code != 0) std::fprintf(stderr, "hfdda: network: the figure was not drawn (the other files were written)\n");
+  return code == 0 ? 0 : 2;
 }
 
 int main(int argc, char** argv) {
@@ -280,6 +388,7 @@ int main(int argc, char** argv) {
     if (command == "run") return run_command(argc, argv, false);
     if (command == "check") return run_command(argc, argv, true);
     if (command == "plot") return plot_command(argc, argv);
+    if (command == "network") return network_command(argc, argv);
     return usage_error("unknown command '" + command + "'");
   } catch (const hfdda::InputError& e) {
     std::fprintf(stderr, "hfdda: input error: %s\n", e.what());

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "io/breakable_patterns.hpp"
+#include "io/fracture_sets.hpp"
 #include "io/load_ramp_keys.hpp"
 
 namespace hfdda::io {
@@ -377,9 +378,13 @@ const std::vector<CrossCheck>& cross_checks() {
        check_pattern_regions},
       {"`load_ramp`: levels as `start`/`increment`/`maximum` or as `history`, not both; a "
        "non-zero stress pattern; `stop_joints` exactly with `stop_when: broken_fraction`, each "
-       "naming a fracture or breakable pattern; no `fluid` section, no fracture `pressure` and no "
+       "naming a fracture, breakable pattern or fracture set; no `fluid` section, no fracture `pressure` and no "
        "`time.end_time` with it.",
-       check_load_ramp}};
+       check_load_ramp},
+      {"`fracture_sets` need `mesh.type: delaunay`; `network_seed` needs a fracture set; set names are distinct and "
+       "differ from the names of `fractures`, `fracture_maps` and `breakable_patterns`; a set's `length.min` (or "
+       "`length.median`) is at most the diagonal of `domain.outer`.",
+       check_fracture_sets}};
   return checks;
 }
 

@@ -122,6 +122,33 @@ struct FractureMapConfig {
   int line = 0;
 };
 
+/// Distribution of the target lengths of a fracture set's fractures [m]: `uniform` (min,
+/// max), `triangular` (min, mode, max), `lognormal` (median, sigma: ln L ~ N(ln median,
+/// sigma^2)) or `power_law` (exponent a, min, max: density ~ L^-a on [min, max]). Only the
+/// keys of the chosen distribution are given (checked when the set is read).
+struct FractureLengthConfig {
+  std::string distribution = "uniform";
+  std::optional<double> min_m, max_m, mode_m, median_m, sigma, exponent;
+};
+
+/// A stochastic set of natural fractures grown along the joints of the Delaunay mesh
+/// (seed 5.3; solver/networks/fracture_network_generator.hpp): candidates are the joints
+/// within `azimuth_tolerance_deg` of the azimuth, a fraction of them are seeds, each grown
+/// joint by joint to a length drawn from `length`. The azimuth is measured in degrees
+/// clockwise from the domain's +y axis (0: along y, 90: along x, 45: south-west to
+/// north-east). Its fractures are natural, named "<name>.<k>", and take the values below
+/// (unset: those of `joints`).
+struct FractureSetConfig {
+  std::string name;
+  double azimuth_deg = 0.0;
+  double azimuth_tolerance_deg = 5.0;   ///< seed 5.3: +- 5 degrees
+  double growth_tolerance_deg = 45.0;   ///< largest deviation of a joint added while growing (90: any that advances)
+  double seed_fraction = 0.12;          ///< seed 5.3: 12 % of the candidates
+  FractureLengthConfig length;
+  std::optional<double> tensile_strength_Pa, cohesion_Pa, friction_angle_deg, hydraulic_width_m;
+  int line = 0;
+};
+
 /// Fracturing fluid (seed 2.1, Table 3.1). Present in a case file means the flow
 /// network is solved, coupled with the blocks.
 struct FluidConfig {
@@ -260,6 +287,10 @@ struct CaseConfig {
   std::vector<BreakablePatternConfig> breakable_patterns;
   /// Natural-fracture maps read from CSV files (their rows end up in `fractures`).
   std::vector<FractureMapConfig> fracture_maps;
+  /// Stochastic natural-fracture sets generated on the mesh (seed 5.3), and the seed of
+  /// their random numbers: the same seed gives the same network on every machine.
+  std::vector<FractureSetConfig> fracture_sets;
+  int network_seed = 0;
   FarFieldConfig far_field;
   std::optional<LoadRampConfig> load_ramp;  ///< absent: loads constant, time stepping to end_time
   std::vector<PointLoadConfig> point_loads;

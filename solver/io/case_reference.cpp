@@ -58,8 +58,9 @@ marked *required*. A complete example is
 - `extends: base.yaml` reads the base file (path relative to the file that names it)
   before this one; the keys of this file then override it one by one, maps merging
   key by key (`fluid` too; `fluid: null` removes an inherited one). Lists (`materials`,
-  `fractures`, `breakable_patterns`, `point_loads`, `fixed_points`, `injections`,
-  `probes`, `far_field.sides`), points and rectangles are replaced as a whole; list
+  `fractures`, `breakable_patterns`, `fracture_maps`, `fracture_sets`, `point_loads`,
+  `fixed_points`, `injections`, `probes`, `far_field.sides`), points and rectangles are
+  replaced as a whole; list
   items start from the item defaults below. Chains are allowed; a cycle is an error.
 - Numbers are plain YAML numbers (`25e9`, `-5.0e6`); a quoted `"25e9"` is a string.
   Every number is finite (`.inf` and `.nan` are errors); `1,5` is an error that asks
@@ -112,6 +113,22 @@ marked *required*. A complete example is
       lines: [horizontal, vertical, plus_45]
     - {name: weak, region: {xmin: -20, xmax: 20, ymin: -20, ymax: 20}, cell_size: 2,
        lines: [minus_45], tensile_strength: 0.1e6}
+  ```
+- Natural-fracture networks: `fracture_sets` grows stochastic sets of natural fractures
+  along the joints of a Delaunay mesh (seed 5.3), the same network for the same
+  `network_seed` on every machine; `hfdda network CASE.yaml --out DIR` writes it
+  (CSV, VTU, PNG) without running the case. The two sets of the seed's Figure 5.6
+  (Table 5.3's natural fractures):
+
+  ```yaml
+  domain: {outer: {xmin: -125, xmax: 125, ymin: -125, ymax: 125}}
+  mesh: {type: delaunay, max_area_inner: 25}
+  network_seed: 1
+  fracture_sets:
+    - {name: J1, azimuth: 45, seed_fraction: 0.12, length: {min: 20, max: 40},
+       tensile_strength: 0, cohesion: 0, friction_angle: 35, hydraulic_width: 1.0e-4}
+    - {name: J2, azimuth: 135, seed_fraction: 0.12, length: {min: 20, max: 40},
+       tensile_strength: 0, cohesion: 0, friction_angle: 35, hydraulic_width: 1.0e-4}
   ```
 )";
 

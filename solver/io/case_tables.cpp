@@ -8,6 +8,7 @@
 
 #include "io/breakable_patterns.hpp"
 #include "io/fracture_maps.hpp"
+#include "io/fracture_sets.hpp"
 #include "io/case_fields.hpp"
 #include "io/load_ramp_keys.hpp"
 
@@ -515,6 +516,8 @@ const Table<CaseConfig>& case_table() {
                 &CaseConfig::fractures, &fracture_table, 0, "none", check_fracture_item),
        breakable_patterns_key(),
        fracture_maps_key(),
+       fracture_sets_key(),
+       network_seed_key(),
        section({"far_field", "", "§3.1: background stress", "far-field stress"},
                &CaseConfig::far_field, &far_field_table),
        load_ramp_key(),

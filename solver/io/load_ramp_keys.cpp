@@ -31,7 +31,7 @@ Field<LoadRampConfig> history_list(Doc d) {
   return {key_doc(d, "list of [t, s]", "none", "t in [0, 1e10] and increasing, s in [-1e10, 1e10]; 2 to 100000 points"), read};
 }
 
-/// `stop_joints`: names of fractures or breakable patterns.
+/// `stop_joints`: names of fractures, breakable patterns or fracture sets.
 Field<LoadRampConfig> name_list(Doc d) {
   auto read = [](FileReader& r, const YAML::Node& n, const std::string& key, LoadRampConfig& out) {
     if (!n.IsSequence()) r.fail(n, key, "expected a list of names (got " + describe(n) + ")");
@@ -40,7 +40,8 @@ Field<LoadRampConfig> name_list(Doc d) {
     for (std::size_t i = 0; i < n.size(); ++i) names.push_back(read_string(r, n[i], item_key(key, i)));
     out.stop_joints = std::move(names);
   };
-  return {key_doc(d, "list of strings", "none", "names of `fractures` or `breakable_patterns`"), read};
+  return {key_doc(d, "list of strings", "none", "names of `fractures`, `breakable_patterns` or `fracture_sets`"),
+          read};
 }
 
 const Table<LoadRampConfig>& load_ramp_table() {
@@ -85,7 +86,7 @@ const Table<LoadRampConfig>& load_ramp_table() {
                                    {"broken_fraction", "broken_fraction"},
                                    {"failed_both_sides", "failed_both_sides"}}),
        name_list({"stop_joints", "", "§4.2, §4.3: the 24 m path each side",
-                  "broken_fraction: the joints of these fractures or breakable patterns (a joint on several "
+                  "broken_fraction: the joints of these fractures, breakable patterns or fracture sets (a joint on several "
                   "fractures belongs to the last one listed: an open crack written after its path is not part "
                   "of the path)"}),
        number({"stop_fraction", "-", "§4.2, §4.3: 75 %",
@@ -151,9 +152,10 @@ void check_load_ramp(const CaseConfig& c, const MergedChecker& m) {
     bool known = false;
     for (const auto& f : c.fractures) known = known || f.name == name;
     for (const auto& p : c.breakable_patterns) known = known || p.name == name;
+    for (const auto& s : c.fracture_sets) known = known || s.name == name;
     if (!known)
       m.fail(item_key("load_ramp.stop_joints", i),
-             "names no fracture or breakable pattern (got '" + name + "')");
+             "names no fracture, breakable pattern or fracture set (got '" + name + "')");
   }
   if (ramp.crack_direction.norm() == 0) m.fail("load_ramp.crack_direction", "must not be [0, 0]");
   if (!c.domain.outer.contains(ramp.crack_centre))

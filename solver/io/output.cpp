@@ -386,6 +386,36 @@ void write_joints_vtu(const std::string& path, const std::vector<JointRow>& join
   write_file_atomically(path, out);
 }
 
+void write_lines_vtu(const std::string& path, const std::vector<std::pair<Vec2, Vec2>>& lines,
+                     const std::vector<LineCellData>& cell_data) {
+  for (const LineCellData& data : cell_data)
+    if (data.values.size() != lines.size())
+      throw std::invalid_argument("write_lines_vtu: array '" + data.name + "' has " +
+                                  std::to_string(data.values.size()) + " values for " +
+                                  std::to_string(lines.size()) + " lines");
+  std::vector<Vec2> points;
+  std::vector<int> offsets{0};
+  points.reserve(2 * lines.size());
+  offsets.reserve(lines.size() + 1);
+  for (const auto& [p, q] : lines) {
+    points.push_back(p);
+    points.push_back(q);
+    offsets.push_back(static_cast<int>(points.size()));
+  }
+  std::string out;
+  out.reserve(1024 + lines.size() * (120 + 12 * cell_data.size()));
+  begin_vtu(out, points.size(), lines.size());
+  out += "      <CellData>\n";
+  for (const LineCellData& data : cell_data) append_int32_array(out, data.name, data.values);
+  out += "      </CellData>\n";
+  out += "      <Points>\n";
+  append_xy0_array(out, "Points", points);
+  out += "      </Points>\n";
+  append_consecutive_cells(out, offsets, line_cell_type);
+  end_vtu(out);
+  write_file_atomically(path, out);
+}
+
 // ---------------------------------------------------------------------------
 
 void PvdSeries::add(double time_s, const std::string& relative_file) {

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -55,6 +56,17 @@ void write_blocks_vtu(const std::string& path, const BlockFrame& frame);
 /// (mean of both ends), "normal_stress", "shear_stress", "state" (0 open, 1 sliding,
 /// 2 locked, taking the more open end), "broken", "natural", "fluid".
 void write_joints_vtu(const std::string& path, const std::vector<JointRow>& joints);
+
+/// An integer value per line of write_lines_vtu, shown in ParaView under `name`.
+struct LineCellData {
+  std::string name;
+  std::vector<int> values;
+};
+
+/// VTK XML unstructured grid of straight lines (p, q) with integer cell data (each
+/// array one value per line). Throws std::invalid_argument on an array of another size.
+void write_lines_vtu(const std::string& path, const std::vector<std::pair<Vec2, Vec2>>& lines,
+                     const std::vector<LineCellData>& cell_data);
 
 /// A ParaView .pvd collection: datasets with their times, rewritten atomically on add().
 class PvdSeries {

@@ -77,6 +77,9 @@ std::uint64_t case_fingerprint(const Model& model) {
     const std::string text = read_text(map.path);
     fnv1a(h, text.data(), text.size());
   }
+  // A generated network: the joints it took (a restart with another network is refused).
+  if (!model.network.fractures.empty())
+    fnv1a(h, model.fracture_of_joint.data(), model.fracture_of_joint.size() * sizeof(int));
   const dda::BlockSystem& system = *model.system;
   const std::int64_t sizes[] = {system.n_blocks(), static_cast<std::int64_t>(system.contacts().size()),
                                 static_cast<std::int64_t>(system.mesh().points.size())};

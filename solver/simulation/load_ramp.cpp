@@ -25,7 +25,7 @@ double history_level(const std::vector<Vec2>& history, double t) {
 }
 
 /// A fracture belongs to a stop name if it is named so, or is a line of the breakable
-/// pattern of that name (`<name>.<family>`).
+/// pattern or a fracture of the set of that name (`<name>.<family>`, `<name>.<k>`).
 bool belongs_to(const std::string& fracture_name, const std::vector<std::string>& names) {
   for (const std::string& n : names)
     if (fracture_name == n || fracture_name.starts_with(n + ".")) return true;
@@ -35,8 +35,8 @@ bool belongs_to(const std::string& fracture_name, const std::vector<std::string>
 }  // namespace
 
 LoadRamp::LoadRamp(const io::CaseConfig& config, const dda::BlockSystem& system,
-                   const std::vector<int>& fracture_of_joint, const coupling::BondList& bonds,
-                   bool shear_failure_of_intact_joints)
+                   const std::vector<int>& fracture_of_joint, const std::vector<std::string>& fracture_names,
+                   const coupling::BondList& bonds, bool shear_failure_of_intact_joints)
     : config_(*config.load_ramp),
       bonds_(bonds),
       dt_s_(config.time.dt_s),
@@ -57,7 +57,7 @@ LoadRamp::LoadRamp(const io::CaseConfig& config, const dda::BlockSystem& system,
       for (int ci : ends)
         if (contacts[ci].bonded) bond_contacts_.push_back(ci);
     const int f = fracture_of_joint[j];
-    if (config_.stop_when == "broken_fraction" && f >= 0 && belongs_to(config.fractures[f].name, config_.stop_joints))
+    if (config_.stop_when == "broken_fraction" && f >= 0 && belongs_to(fracture_names[f], config_.stop_joints))
       for (int ci : ends) {
         stop_contacts_.push_back(ci);
         stop_length_m_ += contacts[ci].length_m;

@@ -49,10 +49,12 @@ struct LoadRampOutcome {
 
 class LoadRamp {
  public:
-  /// `fracture_of_joint`: index into config.fractures per joint (-1: none).
+  /// `fracture_of_joint`: per joint, index into `fracture_names` (-1: none), the model's
+  /// fractures (written, then generated).
   /// `bonds`: the bond list of the model's coupled step (must outlive the ramp).
   LoadRamp(const io::CaseConfig& config, const dda::BlockSystem& system, const std::vector<int>& fracture_of_joint,
-           const coupling::BondList& bonds, bool shear_failure_of_intact_joints);
+           const std::vector<std::string>& fracture_names, const coupling::BondList& bonds,
+           bool shear_failure_of_intact_joints);
 
   /// True while there is a level to solve and the stop condition is not met.
   bool has_next() const;

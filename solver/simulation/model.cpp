@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 #include <numbers>
 #include <sstream>
@@ -156,32 +158,90 @@ std::vector<std::vector<int>> joints_of_fractures(const mesh::Mesh& m, const io:
   return joints;
 }
 
+/// What a fracture sets on its joints; unset values leave the joint's as they are.
+struct JointOverrides {
+  bool initially_open = false;
+  bool natural = false;
+  std::optional<bool> breakable;
+  std::optional<double> tensile_strength_Pa, fracture_toughness_Pa_sqrt_m, cohesion_Pa, friction_angle_deg,
+      hydraulic_width_m, pressure_Pa;
+};
+
+void apply_overrides(mesh::JointProperties& p, const JointOverrides& o) {
+  p.initially_open = p.initially_open || o.initially_open;
+  p.natural = p.natural || o.natural;
+  if (o.breakable) p.breakable = *o.breakable;
+  // The fracture's own choice of T0 or K_IC wins over the one of `joints` (or of an earlier fracture).
+  if (o.tensile_strength_Pa) {
+    p.tensile_strength_Pa = *o.tensile_strength_Pa;
+    p.fracture_toughness_Pa_sqrt_m.reset();
+  }
+  if (o.fracture_toughness_Pa_sqrt_m) p.fracture_toughness_Pa_sqrt_m = o.fracture_toughness_Pa_sqrt_m;
+  if (o.cohesion_Pa) p.cohesion_Pa = *o.cohesion_Pa;
+  if (o.friction_angle_deg) p.friction_angle_rad = *o.friction_angle_deg * std::numbers::pi / 180.0;
+  if (o.hydraulic_width_m) p.hydraulic_width_m = *o.hydraulic_width_m;
+  if (o.pressure_Pa) p.prescribed_pressure_Pa = *o.pressure_Pa;
+}
+
+JointOverrides overrides_of(const io::FractureConfig& fr) {
+  return {fr.initially_open,      fr.natural,        fr.breakable,          fr.tensile_strength_Pa,
+          fr.fracture_toughness_Pa_sqrt_m, fr.cohesion_Pa, fr.friction_angle_deg, fr.hydraulic_width_m,
+          fr.pressure_Pa};
+}
+
+/// A generated fracture is a natural fracture with its set's values (seed Table 5.3).
+JointOverrides overrides_of(const io::FractureSetConfig& set) {
+  JointOverrides o;
+  o.natural = true;
+  o.tensile_strength_Pa = set.tensile_strength_Pa;
+  o.cohesion_Pa = set.cohesion_Pa;
+  o.friction_angle_deg = set.friction_angle_deg;
+  o.hydraulic_width_m = set.hydraulic_width_m;
+  return o;
+}
+
 /// Joints along each fracture take its overrides; a fracture must be made of joints.
 std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c) {
   std::vector<int> fracture_of_joint(m.joints.size(), -1);
   const std::vector<std::vector<int>> joints = joints_of_fractures(m, c);
   for (std::size_t f = 0; f < c.fractures.size(); ++f) {
-    const io::FractureConfig& fr = c.fractures[f];
-    const std::vector<int>& on = joints[f];
-    for (int j : on) {
-      mesh::JointProperties& p = m.joints[j].properties;
+    const JointOverrides overrides = overrides_of(c.fractures[f]);
+    for (int j : joints[f]) {
       fracture_of_joint[j] = static_cast<int>(f);
-      p.initially_open = p.initially_open || fr.initially_open;
-      p.natural = p.natural || fr.natural;
-      if (fr.breakable) p.breakable = *fr.breakable;
-      // The fracture's own choice of T0 or K_IC wins over the one of `joints` (or of an earlier fracture).
-      if (fr.tensile_strength_Pa) {
-        p.tensile_strength_Pa = *fr.tensile_strength_Pa;
-        p.fracture_toughness_Pa_sqrt_m.reset();
-      }
-      if (fr.fracture_toughness_Pa_sqrt_m) p.fracture_toughness_Pa_sqrt_m = fr.fracture_toughness_Pa_sqrt_m;
-      if (fr.cohesion_Pa) p.cohesion_Pa = *fr.cohesion_Pa;
-      if (fr.friction_angle_deg) p.friction_angle_rad = *fr.friction_angle_deg * std::numbers::pi / 180.0;
-      if (fr.hydraulic_width_m) p.hydraulic_width_m = *fr.hydraulic_width_m;
-      if (fr.pressure_Pa) p.prescribed_pressure_Pa = *fr.pressure_Pa;
+      apply_overrides(m.joints[j].properties, overrides);
     }
   }
   return fracture_of_joint;
+}
+
+/// The network of the case's fracture sets on the joints no written fracture holds, its
+/// sets' values applied to its joints; appended to `fractures` and `fracture_of_joint`.
+networks::FractureNetwork apply_fracture_sets(mesh::Mesh& m, const io::CaseConfig& c,
+                                              std::vector<ModelFracture>& fractures,
+                                              std::vector<int>& fracture_of_joint) {
+  if (c.fracture_sets.empty()) return {};
+  if (c.mesh.kind != io::MeshKind::delaunay)  // refused by the case checks already
+    throw InputError(c.file, c.fracture_sets.front().line, "fracture_sets", "needs mesh.type: delaunay");
+  std::vector<char> reserved(m.joints.size(), 0);
+  for (std::size_t j = 0; j < m.joints.size(); ++j) reserved[j] = fracture_of_joint[j] >= 0;
+  networks::FractureNetwork network;
+  try {
+    network = networks::generate_fracture_network(m, fracture_set_settings(c),
+                                                  static_cast<std::uint64_t>(c.network_seed), reserved);
+  } catch (const ModelError& e) {
+    throw InputError(c.file, c.fracture_sets.front().line, "fracture_sets", e.what());
+  }
+  const int first = static_cast<int>(fractures.size());
+  for (std::size_t n = 0; n < network.fractures.size(); ++n) {
+    const networks::GeneratedFracture& g = network.fractures[n];
+    fractures.push_back({g.name, -1, g.set});
+    const JointOverrides overrides = overrides_of(c.fracture_sets[g.set]);
+    for (int j : g.joints) {
+      fracture_of_joint[j] = first + static_cast<int>(n);
+      apply_overrides(m.joints[j].properties, overrides);
+    }
+  }
+  return network;
 }
 
 /// Boundary edges on one side of the outer rectangle.
@@ -249,8 +309,10 @@ void build_flow_network(Model& model, const io::CaseConfig& c) {
   std::vector<char> filled_point(m.points.size(), 0);
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     const int f = model.fracture_of_joint[j];
-    if (f < 0 || !c.fractures[f].fluid_filled) continue;
-    model.flow->fill_initially(static_cast<int>(j), c.fractures[f].initial_width_m, c.fractures[f].initial_pressure_Pa);
+    const int written = f < 0 ? -1 : model.fractures[f].config_index;
+    if (written < 0 || !c.fractures[written].fluid_filled) continue;
+    model.flow->fill_initially(static_cast<int>(j), c.fractures[written].initial_width_m,
+                               c.fractures[written].initial_pressure_Pa);
     filled_point[m.joints[j].point_p] = filled_point[m.joints[j].point_q] = 1;
   }
   for (std::size_t i = 0; i < c.injections.size(); ++i) {
@@ -295,6 +357,43 @@ mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
   return m;
 }
 
+std::vector<networks::FractureSetSettings> fracture_set_settings(const io::CaseConfig& c) {
+  std::vector<networks::FractureSetSettings> sets;
+  for (const io::FractureSetConfig& fs : c.fracture_sets) {
+    networks::FractureSetSettings s;
+    s.name = fs.name;
+    s.azimuth_deg = fs.azimuth_deg;
+    s.azimuth_tolerance_deg = fs.azimuth_tolerance_deg;
+    s.growth_tolerance_deg = fs.growth_tolerance_deg;
+    s.seed_fraction = fs.seed_fraction;
+    const io::FractureLengthConfig& l = fs.length;
+    using D = networks::LengthDistribution;
+    s.length.distribution = l.distribution == "triangular" ? D::triangular
+                            : l.distribution == "lognormal" ? D::lognormal
+                            : l.distribution == "power_law" ? D::power_law
+                                                            : D::uniform;
+    s.length.min_m = l.min_m.value_or(0.0);
+    s.length.max_m = l.max_m.value_or(0.0);
+    s.length.mode_m = l.mode_m.value_or(0.0);
+    s.length.median_m = l.median_m.value_or(0.0);
+    s.length.sigma = l.sigma.value_or(0.0);
+    s.length.exponent = l.exponent.value_or(0.0);
+    sets.push_back(std::move(s));
+  }
+  return sets;
+}
+
+FracturedMesh build_fractured_mesh(const io::CaseConfig& c) {
+  FracturedMesh out;
+  out.mesh = build_case_mesh(c);
+  assign_materials(out.mesh, c);
+  out.fracture_of_joint = apply_fractures(out.mesh, c);
+  for (std::size_t f = 0; f < c.fractures.size(); ++f)
+    out.fractures.push_back({c.fractures[f].name, static_cast<int>(f), -1});
+  out.network = apply_fracture_sets(out.mesh, c, out.fractures, out.fracture_of_joint);
+  return out;
+}
+
 dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   double max_modulus = 0.0;
   for (const auto& m : c.materials) max_modulus = std::max(max_modulus, m.youngs_modulus_Pa);
@@ -325,9 +424,11 @@ Model build_model(const io::CaseConfig& c) {
   const auto start = std::chrono::steady_clock::now();
   Model model;
   model.config = c;
-  mesh::Mesh m = build_case_mesh(c);
-  assign_materials(m, c);
-  model.fracture_of_joint = apply_fractures(m, c);
+  FracturedMesh fractured = build_fractured_mesh(c);
+  mesh::Mesh& m = fractured.mesh;
+  model.fractures = std::move(fractured.fractures);
+  model.fracture_of_joint = std::move(fractured.fracture_of_joint);
+  model.network = std::move(fractured.network);
 
   std::vector<dda::Material> materials;
   for (const auto& mc : c.materials) materials.push_back({mc.youngs_modulus_Pa, mc.poissons_ratio, mc.density_kg_m3});
@@ -372,9 +473,12 @@ Model build_model(const io::CaseConfig& c) {
   }
   model.step = std::make_unique<coupling::CoupledStep>(system, std::move(fluids), fracture_rules(c),
                                                        std::getenv("HFDDA_TRACE_CUTS") != nullptr);
-  if (c.load_ramp)
-    model.ramp = std::make_unique<LoadRamp>(c, system, model.fracture_of_joint, model.step->bonds(),
+  if (c.load_ramp) {
+    std::vector<std::string> names;
+    for (const ModelFracture& f : model.fractures) names.push_back(f.name);
+    model.ramp = std::make_unique<LoadRamp>(c, system, model.fracture_of_joint, names, model.step->bonds(),
                                             c.numerics.shear_failure_of_intact_joints);
+  }
   model.mesh_seconds_ms = static_cast<int>(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   return model;

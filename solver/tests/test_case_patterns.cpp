@@ -178,7 +178,7 @@ JointCounts propagation_case_joints(const std::string& name) {
     n.weak += p.tensile_strength_Pa < c.joints.tensile_strength_Pa;
     n.open += p.initially_open;
     const int f = model.fracture_of_joint[j];
-    n.fluid_filled += f >= 0 && c.fractures[f].fluid_filled;
+    n.fluid_filled += f >= 0 && model.fractures[f].config_index >= 0 && c.fractures[model.fractures[f].config_index].fluid_filled;
   }
   return n;
 }

@@ -1,0 +1,73 @@
+# `hfdda network` on the seed's network case (5.3): writes the CSV, VTU and PNG files with
+# consistent counts; the same case written twice gives the same network, byte for byte; a
+# non-empty DIR is refused (exit 2) unless --force; a case without fracture sets and a
+# structured mesh with sets are refused with exit 2 and leave no directory behind.
+file(REMOVE_RECURSE "${OUT}")
+execute_process(COMMAND "${HFDDA}" network "${CASE}" --out "${OUT}/a" RESULT_VARIABLE code OUTPUT_VARIABLE listed
+                ERROR_VARIABLE err)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "network: exit ${code}: ${err}")
+endif()
+foreach(name network.csv network_fractures.csv network_sets.csv network.vtu network.png)
+  if(NOT EXISTS "${OUT}/a/${name}")
+    message(FATAL_ERROR "network: ${name} not written; printed: ${listed} ${err}")
+  endif()
+endforeach()
+file(SIZE "${OUT}/a/network.png" size)
+if(size LESS 5000)
+  message(FATAL_ERROR "network: network.png has only ${size} bytes")
+endif()
+if(NOT err MATCHES "set J1 \\(azimuth 45 deg\\): [0-9]+ candidates" OR NOT err MATCHES "set J2")
+  message(FATAL_ERROR "network: no per-set summary: ${err}")
+endif()
+# One row per joint of a fracture: the joints column of network_fractures.csv adds up.
+file(STRINGS "${OUT}/a/network.csv" joint_rows)
+file(STRINGS "${OUT}/a/network_fractures.csv" fracture_rows)
+list(LENGTH joint_rows n_joint_rows)
+list(POP_FRONT fracture_rows header)
+if(NOT header STREQUAL "name,set,joints,length_m,target_length_m,reached_target,seed_joint")
+  message(FATAL_ERROR "network_fractures.csv header: ${header}")
+endif()
+set(sum 0)
+foreach(row IN LISTS fracture_rows)
+  string(REPLACE "," ";" cells "${row}")
+  list(GET cells 2 joints)
+  math(EXPR sum "${sum} + ${joints}")
+endforeach()
+math(EXPR expected "${sum} + 1")
+if(NOT n_joint_rows EQUAL expected OR sum LESS 100)
+  message(FATAL_ERROR "network.csv has ${n_joint_rows} lines, the fractures ${sum} joints (+ header)")
+endif()
+
+# Same case, same network; a used directory is refused, then emptied with --force.
+file(WRITE "${OUT}/b/stale.txt" "x")
+execute_process(COMMAND "${HFDDA}" network "${CASE}" --out "${OUT}/b" --no-figure RESULT_VARIABLE code ERROR_VARIABLE err)
+if(NOT code EQUAL 2 OR NOT err MATCHES "not empty.*--force")
+  message(FATAL_ERROR "network into a non-empty directory: expected exit 2, got ${code}: ${err}")
+endif()
+execute_process(COMMAND "${HFDDA}" network "${CASE}" --out "${OUT}/b" --no-figure --force RESULT_VARIABLE code
+                ERROR_VARIABLE err)
+if(NOT code EQUAL 0 OR EXISTS "${OUT}/b/stale.txt" OR EXISTS "${OUT}/b/network.png")
+  message(FATAL_ERROR "network --force --no-figure: exit ${code}: ${err}")
+endif()
+foreach(name network.csv network_fractures.csv network.vtu)
+  file(SHA256 "${OUT}/a/${name}" first)
+  file(SHA256 "${OUT}/b/${name}" second)
+  if(NOT first STREQUAL second)
+    message(FATAL_ERROR "network: ${name} differs between two runs of the same case")
+  endif()
+endforeach()
+
+# Refused cases leave no directory.
+file(WRITE "${OUT}/no_sets.yaml" "title: no fracture sets\nmesh: {type: delaunay, max_area_inner: 100}\n")
+execute_process(COMMAND "${HFDDA}" network "${OUT}/no_sets.yaml" --out "${OUT}/c" RESULT_VARIABLE code
+                ERROR_VARIABLE err)
+if(NOT code EQUAL 2 OR NOT err MATCHES "needs at least one fracture set" OR EXISTS "${OUT}/c")
+  message(FATAL_ERROR "network without sets: expected exit 2 and no directory, got ${code}: ${err}")
+endif()
+file(WRITE "${OUT}/structured.yaml" "extends: ${CASE}\nmesh: {type: structured, cell_size: 5}\n")
+execute_process(COMMAND "${HFDDA}" network "${OUT}/structured.yaml" --out "${OUT}/d" RESULT_VARIABLE code
+                ERROR_VARIABLE err)
+if(NOT code EQUAL 2 OR NOT err MATCHES "fracture_sets.*needs mesh.type: delaunay" OR EXISTS "${OUT}/d")
+  message(FATAL_ERROR "network on a structured mesh: expected exit 2, got ${code}: ${err}")
+endif()
