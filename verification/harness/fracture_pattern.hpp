@@ -1,0 +1,82 @@
+#pragma once
+// Measures of a fracture pattern at the end of a run, shared by the network cases
+// (seed 5.3-5.4): which joints are open, invaded or natural, the extents of the open and
+// invaded sets along the axes, and the joints a figure draws. Coordinates are those of
+// the initial mesh (the pattern, not the displaced rock).
+//
+// Definitions (seed 5.3, Figures 5.10-5.16): a joint is open when at least one of its
+// end contacts is open (the rock has separated: the hydraulic fracture propagated along
+// it); invaded when the flow network has wetted it (fluid reached it, open or not).
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "dda/block_system.hpp"
+#include "fluid/flow_network.hpp"
+#include "mesh/mesh.hpp"
+#include "simulation/model.hpp"
+
+namespace hfdda::verification {
+
+struct JointPattern {
+  std::vector<char> open, invaded, natural;
+  std::vector<double> length_m;
+  std::vector<Vec2> p, q;  ///< end points (initial mesh)
+};
+
+inline JointPattern joint_pattern(const simulation::Model& model) {
+  const dda::BlockSystem& s = *model.system;
+  const auto& joints = s.mesh().joints;
+  const auto& points = s.mesh().points;
+  JointPattern jp;
+  const std::size_t n = joints.size();
+  jp.open.assign(n, 0), jp.invaded.assign(n, 0), jp.natural.assign(n, 0), jp.length_m.assign(n, 0.0);
+  jp.p.resize(n), jp.q.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const int ji = static_cast<int>(j);
+    jp.open[j] = s.joint_end_state(ji, 0) == dda::ContactState::open || s.joint_end_state(ji, 1) == dda::ContactState::open;
+    jp.invaded[j] = model.flow && model.flow->wetted(ji);
+    jp.natural[j] = joints[j].properties.natural;
+    jp.p[j] = points[joints[j].point_p];
+    jp.q[j] = points[joints[j].point_q];
+    jp.length_m[j] = (jp.q[j] - jp.p[j]).norm();
+  }
+  return jp;
+}
+
+/// Range (max - min) of the end points' coordinate `axis` (0: x, 1: y) over the joints
+/// selected by `mask`; NaN when none is selected.
+inline double extent_m(const JointPattern& jp, const std::vector<char>& mask, int axis) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t j = 0; j < mask.size(); ++j)
+    if (mask[j]) lo = std::min({lo, jp.p[j][axis], jp.q[j][axis]}), hi = std::max({hi, jp.p[j][axis], jp.q[j][axis]});
+  return hi >= lo ? hi - lo : std::numeric_limits<double>::quiet_NaN();
+}
+
+/// Total length of the joints with mask[j] && (filter[j] == want) [m]; filter may be empty.
+inline double length_where(const JointPattern& jp, const std::vector<char>& mask,
+                           const std::vector<char>* filter = nullptr, bool want = true) {
+  double sum = 0.0;
+  for (std::size_t j = 0; j < mask.size(); ++j)
+    if (mask[j] && (!filter || bool((*filter)[j]) == want)) sum += jp.length_m[j];
+  return sum;
+}
+
+/// The joints a figure draws (natural, open or invaded), as CSV: px,py,qx,qy,natural,open,invaded.
+inline std::string pattern_csv(const JointPattern& jp) {
+  std::ostringstream out;
+  out.precision(9);
+  out << "px,py,qx,qy,natural,open,invaded\n";
+  for (std::size_t j = 0; j < jp.open.size(); ++j) {
+    if (!jp.natural[j] && !jp.open[j] && !jp.invaded[j]) continue;
+    out << jp.p[j].x() << ',' << jp.p[j].y() << ',' << jp.q[j].x() << ',' << jp.q[j].y() << ',' << int(jp.natural[j])
+        << ',' << int(jp.open[j]) << ',' << int(jp.invaded[j]) << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace hfdda::verification
