@@ -18,6 +18,7 @@
 #include "dda/block_system.hpp"
 #include "fluid/flow_network.hpp"
 #include "mesh/mesh.hpp"
+#include "harness.hpp"
 #include "simulation/model.hpp"
 
 namespace hfdda::verification {
@@ -64,6 +65,32 @@ inline double length_where(const JointPattern& jp, const std::vector<char>& mask
   for (std::size_t j = 0; j < mask.size(); ++j)
     if (mask[j] && (!filter || bool((*filter)[j]) == want)) sum += jp.length_m[j];
   return sum;
+}
+
+/// The measures of one run's pattern, as named numbers for the checks and JSON for
+/// result.json: open and invaded lengths and extents, the open band's aspect (x-extent
+/// over y-extent), the share of the open length on natural fractures.
+inline void measure_pattern(const JointPattern& jp, Metrics& m) {
+  const double open_m = length_where(jp, jp.open);
+  const double open_natural_m = length_where(jp, jp.open, &jp.natural, true);
+  std::vector<char> closed_invaded_natural(jp.open.size(), 0);
+  for (std::size_t j = 0; j < jp.open.size(); ++j)
+    closed_invaded_natural[j] = jp.invaded[j] && !jp.open[j] && jp.natural[j];
+  const double open_x = extent_m(jp, jp.open, 0), open_y = extent_m(jp, jp.open, 1);
+  m.numbers["open_length_m"] = open_m;
+  m.numbers["open_natural_fraction"] = open_m > 0.0 ? open_natural_m / open_m : std::numeric_limits<double>::quiet_NaN();
+  m.numbers["open_x_extent_m"] = open_x;
+  m.numbers["open_y_extent_m"] = open_y;
+  m.numbers["open_band_aspect"] = open_y > 0.0 ? open_x / open_y : std::numeric_limits<double>::quiet_NaN();
+  m.numbers["invaded_length_m"] = length_where(jp, jp.invaded);
+  m.numbers["invaded_closed_natural_m"] = length_where(jp, closed_invaded_natural);
+  m.numbers["invaded_x_extent_m"] = extent_m(jp, jp.invaded, 0);
+  m.numbers["invaded_y_extent_m"] = extent_m(jp, jp.invaded, 1);
+  m.numbers["natural_length_m"] = length_where(jp, jp.natural);
+  for (const char* key : {"open_length_m", "open_natural_fraction", "open_x_extent_m", "open_y_extent_m",
+                          "open_band_aspect", "invaded_length_m", "invaded_closed_natural_m", "invaded_x_extent_m",
+                          "invaded_y_extent_m", "natural_length_m"})
+    m.json[key] = finite_or_null(m.numbers[key]);
 }
 
 /// The joints a figure draws (natural, open or invaded), as CSV: px,py,qx,qy,natural,open,invaded.

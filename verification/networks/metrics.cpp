@@ -31,30 +31,6 @@ void validate(const io::CaseConfig& c, const VariantSpec& v) {
   if (c.fracture_sets.empty()) throw std::runtime_error("the case has no fracture_sets (no natural network)");
 }
 
-/// The measures of one run's pattern (the numbers the checks read).
-void measure(const JointPattern& jp, Metrics& m) {
-  const double open_m = length_where(jp, jp.open);
-  const double open_natural_m = length_where(jp, jp.open, &jp.natural, true);
-  std::vector<char> closed_invaded_natural(jp.open.size(), 0);
-  for (std::size_t j = 0; j < jp.open.size(); ++j)
-    closed_invaded_natural[j] = jp.invaded[j] && !jp.open[j] && jp.natural[j];
-  const double open_x = extent_m(jp, jp.open, 0), open_y = extent_m(jp, jp.open, 1);
-  m.numbers["open_length_m"] = open_m;
-  m.numbers["open_natural_fraction"] = open_m > 0.0 ? open_natural_m / open_m : kNaN;
-  m.numbers["open_x_extent_m"] = open_x;
-  m.numbers["open_y_extent_m"] = open_y;
-  m.numbers["open_band_aspect"] = open_y > 0.0 ? open_x / open_y : kNaN;
-  m.numbers["invaded_length_m"] = length_where(jp, jp.invaded);
-  m.numbers["invaded_closed_natural_m"] = length_where(jp, closed_invaded_natural);
-  m.numbers["invaded_x_extent_m"] = extent_m(jp, jp.invaded, 0);
-  m.numbers["invaded_y_extent_m"] = extent_m(jp, jp.invaded, 1);
-  m.numbers["natural_length_m"] = length_where(jp, jp.natural);
-  for (const char* key : {"open_length_m", "open_natural_fraction", "open_x_extent_m", "open_y_extent_m",
-                          "open_band_aspect", "invaded_length_m", "invaded_closed_natural_m", "invaded_x_extent_m",
-                          "invaded_y_extent_m", "natural_length_m"})
-    m.json[key] = finite_or_null(m.numbers[key]);
-}
-
 /// Open joints of a run from its joints CSV (pattern_csv): end-point text -> length [m].
 /// The variants of one network share their mesh, so equal text is the same joint.
 std::map<std::string, double> open_joints_of(const Metrics& m, const std::string& variant) {
@@ -94,7 +70,7 @@ Metrics variant_metrics(const VariantRun& r) {
   m.json["delta_sigma_MPa"] = v.number("delta_sigma_MPa");
   if (!r.built || !r.model) return m;
   const JointPattern jp = joint_pattern(*r.model);
-  measure(jp, m);
+  measure_pattern(jp, m);
   m.json["blocks"] = r.model->system->n_blocks();
   m.json["time_s"] = r.run.time_s;
   m.json["wall_s_per_step"] = r.run.steps > 0 ? r.run.wall_seconds / r.run.steps : kNaN;

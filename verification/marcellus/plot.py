@@ -1,0 +1,28 @@
+"""Figure of the Marcellus case (seed 5.4, Figure 5.19).
+
+Usage: /usr/bin/python3 plot.py RESULT_DIR
+(reads result.json and joints_<variant>.csv written there by verify_marcellus)
+
+marcellus_quick.png / marcellus.png: the 250 m region at the end of the run, drawn like the
+seed's figure (harness/pattern_plots.py), with the open and invaded band widths.
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "harness"))
+import plot_common  # noqa: E402  (first: selects the Agg backend)
+from pattern_plots import panels  # noqa: E402
+
+
+def main(result_dir):
+    tier, metrics = plot_common.read_result(result_dir)
+    variant = "marcellus_quick" if tier == "quick" else "marcellus"
+    m = metrics.get(variant, {}) if isinstance(metrics, dict) else {}
+    title = "Marcellus shale, " + ("first 10 min" if tier == "quick" else "1 h (seed Fig. 5.19)")
+    if m.get("open_y_extent_m") is not None and m.get("invaded_y_extent_m") is not None:
+        title += f"\nopen band {m['open_y_extent_m']:.0f} m wide, invaded band {m['invaded_y_extent_m']:.0f} m"
+    panels(result_dir, {}, [(variant, title)], "marcellus_quick.png" if tier == "quick" else "marcellus.png", 1)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
