@@ -79,6 +79,37 @@ std::filesystem::path absolute_directory(const std::string& dir, std::error_code
   return p;
 }
 
+/// The outermost directory of DIR's path that does not exist yet (empty: none), i.e. what
+/// creating DIR would add to the file system.
+std::filesystem::path outermost_missing_directory(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path outermost;
+  for (fs::path p = absolute_directory(dir, ec); !ec && !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    outermost = p;
+    if (p == p.parent_path()) break;
+  }
+  return outermost;
+}
+
+/// Creates DIR (and its parents) and checks that a file can be written in it; the reason
+/// if not. On a failed creation `created` is cleared: nothing to take back, or only what
+/// the failed call left, which is kept rather than guessed at.
+std::string create_writable_directory(const std::string& dir, std::filesystem::path& created) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    created.clear();
+    return "cannot create output directory '" + dir + "': " + ec.message();
+  }
+  const std::string probe = dir + "/.hfdda-write-test." + std::to_string(::getpid());
+  std::FILE* file = std::fopen(probe.c_str(), "wb");
+  if (file == nullptr) return "output directory '" + dir + "' is not writable: " + std::strerror(errno);
+  std::fclose(file);
+  std::remove(probe.c_str());
+  return {};
+}
+
 /// Makes DIR ready for a run; the reason if it cannot be used. A directory holding a
 /// previous run is refused unless `force` (then emptied); a restart needs its checkpoint.
 /// `created` is set to the outermost directory this call created (empty: none), so that
@@ -87,12 +118,7 @@ std::string prepare_output_directory(const std::string& dir, bool force, bool re
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path path(dir);
-  created.clear();
-  for (fs::path p = absolute_directory(dir, ec); !ec && !p.empty() && !fs::exists(p, ec);
-       p = p.parent_path()) {
-    created = p;
-    if (p == p.parent_path()) break;
-  }
+  created = outermost_missing_directory(dir);
   if (fs::exists(path, ec) && !fs::is_directory(path, ec)) return "output '" + dir + "' exists and is not a directory";
   const std::string checkpoint = hfdda::simulation::checkpoint_path(dir);
   if (restart) {
@@ -114,17 +140,7 @@ std::string prepare_output_directory(const std::string& dir, bool force, bool re
         if (ec) return "cannot empty '" + dir + "': " + entry.path().string() + ": " + ec.message();
       }
   }
-  fs::create_directories(path, ec);
-  if (ec) {
-    created.clear();  // nothing to take back, or only what a failed call left: kept, not guessed at
-    return "cannot create output directory '" + dir + "': " + ec.message();
-  }
-  const std::string probe = dir + "/.hfdda-write-test." + std::to_string(::getpid());
-  std::FILE* file = std::fopen(probe.c_str(), "wb");
-  if (file == nullptr) return "output directory '" + dir + "' is not writable: " + std::strerror(errno);
-  std::fclose(file);
-  std::remove(probe.c_str());
-  return {};
+  return create_writable_directory(dir, created);
 }
 
 /// Takes back the directories prepare_output_directory created, from DIR up to
@@ -288,11 +304,7 @@ std::string prepare_network_directory(const std::string& dir, bool force, std::f
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path path(dir);
-  created.clear();
-  for (fs::path p = absolute_directory(dir, ec); !ec && !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
-    created = p;
-    if (p == p.parent_path()) break;
-  }
+  created = outermost_missing_directory(dir);
   if (fs::exists(path, ec) && !fs::is_directory(path, ec)) return "output '" + dir + "' exists and is not a directory";
   if (fs::is_directory(path, ec) && !fs::is_empty(path, ec)) {
     if (!force) return "output directory '" + dir + "' is not empty; give --force to empty it first";
@@ -301,17 +313,7 @@ std::string prepare_network_directory(const std::string& dir, bool force, std::f
       if (ec) return "cannot empty '" + dir + "': " + entry.path().string() + ": " + ec.message();
     }
   }
-  fs::create_directories(path, ec);
-  if (ec) {
-    created.clear();
-    return "cannot create output directory '" + dir + "': " + ec.message();
-  }
-  const std::string probe = dir + "/.hfdda-write-test." + std::to_string(::getpid());
-  std::FILE* file = std::fopen(probe.c_str(), "wb");
-  if (file == nullptr) return "output directory '" + dir + "' is not writable: " + std::strerror(errno);
-  std::fclose(file);
-  std::remove(probe.c_str());
-  return {};
+  return create_writable_directory(dir, created);
 }
 
 /// `hfdda network CASE.yaml --out DIR [--force] [--no-figure]`: the mesh and the generated
