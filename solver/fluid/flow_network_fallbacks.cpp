@@ -101,10 +101,13 @@ void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel&
   }
   floor_ = floor;
   std::ostringstream msg;
+  // The unknowns are pressures at full nodes and scaled fill deficits (y < 0) at partly
+  // filled ones, so the largest |y| is not a pressure: both are given.
+  const double largest_pressure = unknowns_.size() > 0 ? std::max(0.0, unknowns_.maxCoeff()) : 0.0;
   msg << "fluid flow: Newton iterations did not converge in " << settings_.max_newton_iterations
-      << " iterations (mass residual " << progress.residual << " of the stored mass, last pressure change "
-      << progress.change << " Pa against pressures up to " << progress.max_pressure << " Pa, "
-      << trial_nodes_.size() << " nodes)";
+      << " iterations (mass residual " << progress.residual << " of the stored mass, last change of the unknowns "
+      << progress.change << " Pa against unknowns up to " << progress.max_pressure << " Pa in magnitude; largest pressure "
+      << largest_pressure << " Pa; " << trial_nodes_.size() << " nodes)";
   throw ConvergenceError(msg.str());
 }
 
