@@ -63,12 +63,12 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     }
   }
 
-  nodes_of_fracture_.resize(nf);
-  for (int k = 0; k < nf; ++k) {
-    const auto& joint = system.mesh().joints[fractures[k]];
-    nodes_of_fracture_[k] = {network_.node_index(joint.point_p), network_.node_index(joint.point_q)};
-  }
   if (use_krylov()) {
+    nodes_of_fracture_.resize(nf);  // the network's connectivity, for the operator's aggregates
+    for (int k = 0; k < nf; ++k) {
+      const auto& joint = system.mesh().joints[fractures[k]];
+      nodes_of_fracture_[k] = {network_.node_index(joint.point_p), network_.node_index(joint.point_q)};
+    }
     operator_ = std::make_unique<ApertureOperator>(system, gaps_, loads_, nodes_of_fracture_);
     sensitivity_.resize(0, 0);
     topology_changed_ = false;

@@ -20,7 +20,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.p
 import plot_common  # noqa: E402  (first: selects the Agg backend)
 
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.collections import LineCollection  # noqa: E402
+from pattern_plots import add_pattern  # noqa: E402
 
 HALF = 0.15
 MARKERS = {"crossing": ("^", "tab:red"), "opening": ("s", "tab:blue"), "arrest": ("o", "tab:green"),
@@ -45,13 +45,7 @@ def draw_joints(ax, result_dir, variant, title):
     if not joints:
         plot_common.mark_no_data([ax])
         return
-    seg = lambda r: [(float(r["px"]), float(r["py"])), (float(r["qx"]), float(r["qy"]))]
-    natural = [seg(r) for r in joints if r["natural"] == "1"]
-    opened = [seg(r) for r in joints if r["open"] == "1"]
-    closed = [seg(r) for r in joints if r["open"] != "1" and (r["invaded"] == "1" or r["broken"] == "1")]
-    ax.add_collection(LineCollection(closed, colors="0.75", linewidths=2.5))
-    ax.add_collection(LineCollection(natural, colors="k", linewidths=0.6))
-    ax.add_collection(LineCollection(opened, colors="0.3", linewidths=2.5))
+    add_pattern(ax, joints, lambda r: r["invaded"] == "1" or r["broken"] == "1")
     ax.plot([0], [0], "ko", mfc="none", ms=4)
 
 

@@ -34,14 +34,21 @@ def draw(ax, result_dir, variant, title, summary, half=125.0):
     if not joints:
         plot_common.mark_no_data([ax])
         return
+    add_pattern(ax, joints, lambda r: r["invaded"] == "1")
+    ax.plot([0], [0], "ko", mfc="none", ms=4)
+
+
+def add_pattern(ax, joints, closed_but_marked):
+    """The seed's drawing of a pattern from joint rows (px, py, qx, qy, natural, open, ...):
+    natural thin black, open thick dark grey, and the rows that are not open but for which
+    closed_but_marked(row) holds (invaded, or broken and closed again) thick light grey."""
     seg = lambda r: [(float(r["px"]), float(r["py"])), (float(r["qx"]), float(r["qy"]))]
     natural = [seg(r) for r in joints if r["natural"] == "1"]
     opened = [seg(r) for r in joints if r["open"] == "1"]
-    invaded = [seg(r) for r in joints if r["open"] != "1" and r["invaded"] == "1"]
-    ax.add_collection(LineCollection(invaded, colors="0.7", linewidths=2.5))
+    closed = [seg(r) for r in joints if r["open"] != "1" and closed_but_marked(r)]
+    ax.add_collection(LineCollection(closed, colors="0.7", linewidths=2.5))
     ax.add_collection(LineCollection(natural, colors="k", linewidths=0.6))
     ax.add_collection(LineCollection(opened, colors="0.25", linewidths=2.5))
-    ax.plot([0], [0], "ko", mfc="none", ms=4)
 
 
 def panels(result_dir, summary, entries, filename, ncols):
