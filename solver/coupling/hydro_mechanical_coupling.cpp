@@ -44,16 +44,7 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
 
   gaps_.resize(2 * nf);
   for (int k = 0; k < nf; ++k)
-    for (int end = 0; end < 2; ++end) {
-      auto& g = gaps_[2 * k + end];
-      g = system.joint_end_gap(fractures[k], end);
-      // An end held closed by intact bonds (a crack tip) opens only by the springs'
-      // compliance, which the Augmented Lagrangian drives to zero by updating
-      // multipliers that S, taken at fixed multipliers, does not see (design notes,
-      // section 19): its mechanical aperture is zero (the floor remains) until a bond
-      // at the point breaks in the open-close check.
-      if (system.joint_end_held_by_bonds(fractures[k], end)) g.row_a.setZero(), g.row_b.setZero(), g.gap0_m = 0.0;
-    }
+    for (int end = 0; end < 2; ++end) gaps_[2 * k + end] = system.joint_end_gap(fractures[k], end);
 
   // B: block forces per unit nodal pressure, from the trapezoidal face loads.
   work_.setZero(6 * nb);

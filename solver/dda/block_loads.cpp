@@ -7,6 +7,11 @@
 
 namespace hfdda::dda {
 
+namespace {
+// Two-point Gauss rule on [0, 1]: exact for the quadratic integrand T(s)^T p(s).
+constexpr double kGaussPoint[2] = {0.5 - 0.28867513459481287, 0.5 + 0.28867513459481287};
+}  // namespace
+
 int BlockSystem::block_containing(const Vec2& p) const {
   double best_distance = std::numeric_limits<double>::max();
   int best = -1;
@@ -112,19 +117,17 @@ void BlockSystem::add_attachment_loads() {
 
 void BlockSystem::add_joint_pressure_load(int j, double pressure_p_Pa, double pressure_q_Pa,
                                           Eigen::VectorXd& forces) const {
-  // Fluid pressure on both faces of a joint, linear along each face (seed 2.4),
-  // integrated by the trapezoidal rule: each end's pressure acts as a force L p / 2 at
-  // that end's corner. This is the load work-conjugate to the flow network's lumped
-  // nodal volumes L w / 2 (seed 2.1), which keeps d(volume)/d(pressure) symmetric
-  // (design notes, section 19); a uniform pressure gets the exact forces and moments.
+  // Fluid pressure on both faces of a joint, trapezoidal along each face (seed 2.4).
   const auto& joint = mesh_.joints[j];
   auto add_face = [&](int block, int start_corner, double p_start, double p_end) {
     const Vec2 u = corner(block, start_corner), v = blocks_.next_corner(block, start_corner);
     const Vec2 n = outward_normal(u, v);
-    const double half_length = 0.5 * (v - u).norm();
-    const Vec2 c = moments_[block].centroid;
-    forces.segment<6>(6 * block) += half_length * (displacement_matrix(u, c).transpose() * (-p_start * n) +
-                                                   displacement_matrix(v, c).transpose() * (-p_end * n));
+    const double length = (v - u).norm();
+    for (double s : kGaussPoint) {
+      const double p = (1.0 - s) * p_start + s * p_end;
+      const Mat26 t = displacement_matrix(u + s * (v - u), moments_[block].centroid);
+      forces.segment<6>(6 * block) += 0.5 * length * t.transpose() * (-p * n);
+    }
   };
   add_face(joint.block_a, joint.corner_a, pressure_p_Pa, pressure_q_Pa);  // a runs p -> q
   add_face(joint.block_b, joint.corner_b, pressure_q_Pa, pressure_p_Pa);  // b runs q -> p

@@ -86,13 +86,6 @@ JointEndGap BlockSystem::joint_end_gap(int joint, int end) const {
   return g;
 }
 
-bool BlockSystem::joint_end_held_by_bonds(int joint, int end) const {
-  const int ci = joint_contacts(joint)[end];
-  const Contact& c = contacts_[ci];
-  if (c.bonded && c.state == ContactState::locked) return true;
-  return contacts_.joined_by_bonds(c.point, c.springs[0].vertex_block, c.springs[0].edge_block, ci);
-}
-
 // ----------------------------------------------------------------------------------
 // Queries at the committed state
 

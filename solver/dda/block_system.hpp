@@ -159,10 +159,6 @@ class BlockSystem {
   /// joint's point p) to pressure_q, acting on both faces of the joint.
   void add_joint_pressure_load(int joint, double pressure_p_Pa, double pressure_q_Pa, Eigen::VectorXd& forces) const;
   JointEndGap joint_end_gap(int joint, int end) const;
-  /// The joint's faces cannot separate at this end beyond the springs' compliance: its
-  /// contact there is an intact bond, or its two blocks are joined around the end point
-  /// by a chain of intact bonds (a crack tip inside the triangle fan of a vertex).
-  bool joint_end_held_by_bonds(int joint, int end) const;
 
   // --- state queries --------------------------------------------------------------
   const mesh::Mesh& mesh() const { return mesh_; }

@@ -151,8 +151,8 @@ bool ContactSet::has_failed_neighbour(int contact) const {
   return false;
 }
 
-template <class Links>
-bool ContactSet::joined_at_point(int point, int block_a, int block_c, Links links) const {
+bool ContactSet::joined_by_closed_joints(int point, int block_a, int block_c,
+                                         const std::vector<ContactState>& joint_state) const {
   // Breadth-first search over the blocks around the point (at most a dozen).
   std::array<int, 32> reached{};
   int n_reached = 0, next = 0;
@@ -160,8 +160,8 @@ bool ContactSet::joined_at_point(int point, int block_a, int block_c, Links link
   while (next < n_reached) {
     const int from = reached[next++];
     for (int k = at_point_offset_[point]; k < at_point_offset_[point + 1]; ++k) {
-      if (!links(at_point_[k])) continue;
       const Contact& j = contacts_[at_point_[k]];
+      if (joint_state[at_point_[k]] == ContactState::open) continue;
       const int a = j.springs[0].vertex_block, b = j.springs[0].edge_block;
       const int to = a == from ? b : b == from ? a : -1;
       if (to < 0 || std::find(reached.begin(), reached.begin() + n_reached, to) != reached.begin() + n_reached) continue;
@@ -171,18 +171,6 @@ bool ContactSet::joined_at_point(int point, int block_a, int block_c, Links link
     }
   }
   return false;
-}
-
-bool ContactSet::joined_by_closed_joints(int point, int block_a, int block_c,
-                                         const std::vector<ContactState>& joint_state) const {
-  return joined_at_point(point, block_a, block_c,
-                         [&](int ci) { return joint_state[ci] != ContactState::open; });
-}
-
-bool ContactSet::joined_by_bonds(int point, int block_a, int block_c, int except) const {
-  return joined_at_point(point, block_a, block_c, [&](int ci) {
-    return ci != except && contacts_[ci].bonded && contacts_[ci].state == ContactState::locked;
-  });
 }
 
 }  // namespace hfdda::dda

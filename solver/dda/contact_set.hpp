@@ -49,10 +49,6 @@ class ContactSet {
   /// Blocks a and c are joined at the point by a chain of joint contacts that are
   /// closed in `joint_state` (one state per joint contact).
   bool joined_by_closed_joints(int point, int block_a, int block_c, const std::vector<ContactState>& joint_state) const;
-  /// Blocks a and c are joined at the point by a chain of intact (bonded, locked) joint
-  /// contacts other than `except`: the faces between a and c cannot separate there
-  /// beyond the springs' compliance.
-  bool joined_by_bonds(int point, int block_a, int block_c, int except) const;
 
   /// Start of a step: remember the contacts for roll_back() and clear the flip counts.
   /// The joint contacts and the active vertex-vertex contacts are copied; an inactive
@@ -82,11 +78,6 @@ class ContactSet {
   std::vector<std::pair<int, Contact>> vertex_vertex_at_start_;
   std::vector<char> vertex_vertex_remembered_;  // per candidate, in this step
   int n_joint_contacts_ = 0;
-  /// Breadth-first search over the blocks around a point through the joint contacts
-  /// for which `links(contact index)` holds.
-  template <class Links>
-  bool joined_at_point(int point, int block_a, int block_c, Links links) const;
-
   std::vector<int> at_point_offset_, at_point_;  // joint contacts by point
   std::vector<int> flips_;                       // state changes of each contact within the step
   std::vector<ContactState> most_open_;          // most open state of each contact within the step

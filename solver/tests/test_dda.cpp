@@ -235,32 +235,6 @@ TEST(DdaContacts, LinearisationMatchesFiniteDifferences) {
   }
 }
 
-TEST(DdaJointPressure, LoadIsWorkConjugateToTheLumpedEndVolumes) {
-  // The flow network stores L w / 2 at each end of a joint (seed 2.1); the pressure
-  // load of that end must be its gradient, (L / 2) d(gap)/dD, for d(volume)/d(pressure)
-  // to be symmetric (Betti; design notes, section 19). The exactly integrated
-  // trapezoidal load puts L/3 and L/6 on the ends and fails this by a third.
-  const mesh::Mesh m = small_mesh(3, 3, 1.0, mesh::CellSplit::two);
-  BlockSystem system(m, {Material{}}, alm_settings(25e9));
-  system.begin_step(1.0);
-  int checked = 0;
-  for (int j = 0; j < static_cast<int>(m.joints.size()); ++j) {
-    const auto& joint = m.joints[j];
-    const double length = (m.points[joint.point_q] - m.points[joint.point_p]).norm();
-    for (int end = 0; end < 2; ++end) {
-      Eigen::VectorXd load = Eigen::VectorXd::Zero(6 * system.n_blocks());
-      system.add_joint_pressure_load(j, end == 0 ? 1.0 : 0.0, end == 0 ? 0.0 : 1.0, load);
-      const JointEndGap g = system.joint_end_gap(j, end);
-      Eigen::VectorXd gradient = Eigen::VectorXd::Zero(6 * system.n_blocks());
-      gradient.segment<6>(6 * g.block_a) += 0.5 * length * g.row_a.transpose();
-      gradient.segment<6>(6 * g.block_b) += 0.5 * length * g.row_b.transpose();
-      EXPECT_LT((load - gradient).norm(), 1e-12 * gradient.norm()) << "joint " << j << " end " << end;
-      ++checked;
-    }
-  }
-  EXPECT_GT(checked, 20);
-}
-
 TEST(DdaSparse, CholmodSolveMatchesDenseSolve) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
