@@ -126,6 +126,13 @@ std::string broken_invariant(const io::CaseConfig& c) {
   // singular system instead of the reader naming the key.
   for (const auto& m : c.materials)
     if (!(m.youngs_modulus_Pa >= 1e3)) return "material '" + clipped(m.name) + "' is softer than 1e3 Pa";
+  // A law accepted for a key gives only values the key accepts as a number.
+  for (const auto& m : c.materials)
+    if ((m.youngs_modulus_law && !(m.youngs_modulus_law->lowest() >= 1e3 && m.youngs_modulus_law->highest() <= 1e13)) ||
+        (m.poissons_ratio_law && !(m.poissons_ratio_law->lowest() >= 0 && m.poissons_ratio_law->highest() < 0.5)))
+      return "material '" + clipped(m.name) + "' has a law beyond the modulus or ratio bounds";
+  if (c.fluid && c.fluid->viscosity_law && !(c.fluid->viscosity_law->lowest() >= 1e-6))
+    return "fluid viscosity law below its documented bound";
   if (c.fluid && !(c.fluid->bulk_modulus_Pa >= 1e5 && c.fluid->viscosity_Pa_s >= 1e-6 &&
                    c.fluid->density_kg_m3 >= 1e-2))
     return "fluid bulk modulus, viscosity or density below its documented bound";

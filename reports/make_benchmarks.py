@@ -2,7 +2,9 @@
 """Write BENCHMARKS.md from Google Benchmark JSON files.
 
 Usage:
-    /usr/bin/python3 reports/make_benchmarks.py --results build/benchmark-results --out reports/BENCHMARKS.md
+    /usr/bin/python3 reports/make_benchmarks.py --results build/benchmark-results --out reports/BENCHMARKS.md \
+        [--scaling reports/network_scaling.json]
+    /usr/bin/python3 reports/make_benchmarks.py --scaling reports/network_scaling.json --out reports/BENCHMARKS.md
 
 One table per JSON file (sorted by file name; benchmarks in run order): name, real
 and CPU time in ms, iterations, every user counter (union over the file, blank when
@@ -16,10 +18,22 @@ at each thread count, the speed-up (wall at 1 over wall at N) and the CPU cost (
 N over CPU at 1). --comparison adds a Markdown section (benchmarks/compare_baseline.py)
 after the header.
 
+--scaling adds the section "Network scaling" from a run of bench_network_scaling: per
+flow-Jacobian path and size, wetted nodes, blocks, CPU and wall time per coupled step,
+one factorisation of K and their ratio, Newton and Krylov iterations, peak memory; the
+exponent of time per step in wetted nodes fitted by least squares on log-log (sizes
+>= 1,000 wetted nodes, and all sizes), the targets (at most N^1.2 from 1,000 to 10,000
+wetted nodes; 10,000 wetted nodes in 4 GB) met, missed or not measured; the sizes that
+did not run and why; and a log-log figure (figures/network_scaling.png next to the
+report, drawn with matplotlib when it can be imported). Without --results only that
+section of an existing report is rewritten (between its markers; appended if it has
+none), so the scaling run, which takes about 15 minutes, is not repeated with the
+others.
+
 Exit status: 0 when the report was written from readable files; 1 when there were
 no JSON files or one could not be read (the report is still written).
 
-Standard library only.
+Standard library only (matplotlib for the scaling figure, if present).
 """
 
 from __future__ import annotations
@@ -221,6 +235,309 @@ def render_file(path: Path) -> tuple[list[str], bool]:
     return lines, True
 
 
+# --- network scaling (bench_network_scaling) ------------------------------------------------
+
+SCALING_BEGIN = "<!-- network-scaling:begin -->"
+SCALING_END = "<!-- network-scaling:end -->"
+SCALING_NAME = re.compile(r"BM_NetworkScaling/ribs:(\d+)/krylov:([01])")
+SCALING_FIGURE = "figures/network_scaling.png"
+TARGET_EXPONENT = 1.2            # time per step at most N^1.2 ...
+TARGET_NODES = (1000, 10000)     # ... from 1,000 to 10,000 wetted nodes
+MEMORY_TARGET_MB = 4096.0        # 10,000 wetted nodes in 4 GB
+MEMORY_TARGET_NODES = 10000
+
+
+def fishbone_nodes(ribs: int) -> int:
+    """Wetted nodes of the benchmark's network (bench_network_scaling.cpp): 24 ribs^2 + 1."""
+    return 24 * ribs * ribs + 1
+
+
+def scaling_rows(benches: list[dict]) -> list[dict]:
+    """One row per path and size: measured counters, or the error that stopped it."""
+    rows = []
+    for b in select_rows(benches):
+        m = SCALING_NAME.search(str(b.get("name", "")))
+        if not m:
+            continue
+        ribs = int(m.group(1))
+        row = {k: float(v) for k, v in b.items() if is_number(v) and k not in STANDARD_KEYS}
+        row.update({"path": "krylov" if m.group(2) == "1" else "dense", "ribs": ribs, "error": failed(b),
+                    "nodes": int(b["wetted_nodes"]) if is_number(b.get("wetted_nodes")) else fishbone_nodes(ribs)})
+        rows.append(row)
+    return sorted(rows, key=lambda r: (r["path"] != "dense", r["nodes"]))
+
+
+def fit_power_law(points: list[tuple[float, float]]) -> tuple[float, float] | None:
+    """Least squares of ln y on ln x: (exponent, prefactor) of y = c x^a; None with fewer
+    than two distinct x."""
+    pts = [(math.log(x), math.log(y)) for x, y in points if x > 0 and y > 0]
+    if len({x for x, _ in pts}) < 2:
+        return None
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    slope = sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
+    return slope, math.exp(my - slope * mx)
+
+
+def measured(rows: list[dict], path: str) -> list[dict]:
+    return [r for r in rows if r["path"] == path and r["error"] is None and is_number(r.get("step_cpu_s"))]
+
+
+def scaling_fits(rows: list[dict]) -> dict:
+    """Per path: the exponent of CPU time per step over sizes >= 1,000 wetted nodes and over
+    all sizes, with the node range and count of sizes of each fit."""
+    fits = {}
+    for path in ("dense", "krylov"):
+        ok = measured(rows, path)
+        for label, subset in (("from_1000", [r for r in ok if r["nodes"] >= TARGET_NODES[0]]), ("all", ok)):
+            fit = fit_power_law([(r["nodes"], r["step_cpu_s"]) for r in subset])
+            fits[(path, label)] = None if fit is None else {
+                "exponent": fit[0], "prefactor": fit[1], "sizes": len(subset),
+                "nodes": (min(r["nodes"] for r in subset), max(r["nodes"] for r in subset))}
+        fit = fit_power_law([(r["nodes"], r["factorize_cpu_s"]) for r in ok if is_number(r.get("factorize_cpu_s"))])
+        fits[(path, "factorisation")] = None if fit is None else {"exponent": fit[0], "prefactor": fit[1]}
+    return fits
+
+
+def n_fmt(n: float) -> str:
+    return f"{int(round(n)):,}"
+
+
+def time_verdict(rows: list[dict], fits: dict) -> list[str]:
+    lines = []
+    for path in ("dense", "krylov"):
+        fit = fits.get((path, "from_1000"))
+        ok = measured(rows, path)
+        largest = max((r["nodes"] for r in ok), default=0)
+        if fit is None:
+            n_big = sum(1 for r in ok if r["nodes"] >= TARGET_NODES[0])
+            why = ("no size with 1,000 or more wetted nodes ran" if n_big == 0
+                   else "only one size with 1,000 or more wetted nodes ran")
+            lines.append(f"- **{path}: not met (not measured)**: {why} within the cap "
+                         f"(largest measured: {n_fmt(largest) if largest else 'none'} wetted nodes), "
+                         "so the exponent from 1,000 to 10,000 could not be fitted.")
+            continue
+        a, (lo, hi) = fit["exponent"], fit["nodes"]
+        if a > TARGET_EXPONENT:
+            verdict = "missed"
+        elif hi >= TARGET_NODES[1]:
+            verdict = "met"
+        else:
+            verdict = f"met up to {n_fmt(hi)} wetted nodes, not measured beyond"
+        lines.append(f"- **{path}: {verdict}**: exponent {a:.2f} against {TARGET_EXPONENT} "
+                     f"({fit['sizes']} sizes, {n_fmt(lo)} to {n_fmt(hi)} wetted nodes).")
+    return lines
+
+
+def memory_verdict(rows: list[dict]) -> list[str]:
+    lines = []
+    for path in ("dense", "krylov"):
+        ok = measured(rows, path)
+        big = [r for r in ok if r["nodes"] >= MEMORY_TARGET_NODES and is_number(r.get("peak_rss_mb"))]
+        if big:
+            r = min(big, key=lambda r: r["nodes"])
+            met = r["peak_rss_mb"] <= MEMORY_TARGET_MB
+            lines.append(f"- **{path}: {'met' if met else 'missed'}**: {n_fmt(r['nodes'])} wetted nodes peaked at "
+                         f"{r['peak_rss_mb']:,.0f} MB.")
+            continue
+        with_memory = [r for r in ok if is_number(r.get("peak_rss_mb"))]
+        largest = max(with_memory, key=lambda r: r["nodes"], default=None)
+        at = (f"largest measured: {n_fmt(largest['nodes'])} wetted nodes at {largest['peak_rss_mb']:,.0f} MB"
+              if largest else "nothing measured")
+        lines.append(f"- **{path}: not measured**: no size with {MEMORY_TARGET_NODES:,} or more wetted nodes "
+                     f"ran within the cap ({at}).")
+    return lines
+
+
+def scaling_observations(rows: list[dict]) -> list[str]:
+    """Per path, from the smallest to the largest measured size: Newton iterations per step,
+    and the share of building S (dense) in the step's wall time at the largest."""
+    lines = []
+    for path in ("dense", "krylov"):
+        ok = measured(rows, path)
+        if len(ok) < 2:
+            continue
+        first, last = ok[0], ok[-1]
+        text = (f"- {path}: Newton iterations per step {fmt(first.get('newton_per_step'))} at "
+                f"{n_fmt(first['nodes'])} wetted nodes, {fmt(last.get('newton_per_step'))} at {n_fmt(last['nodes'])}")
+        if path == "dense" and is_number(last.get("sensitivity_s_per_step")) and last.get("step_s"):
+            text += (f"; building S took {100 * last['sensitivity_s_per_step'] / last['step_s']:.0f} % of the wall "
+                     f"time per step at {n_fmt(last['nodes'])}")
+        if path == "krylov" and last.get("newton_per_step"):
+            text += (f"; {last.get('krylov_per_step', 0) / last['newton_per_step']:.0f} Krylov iterations per Newton "
+                     f"iteration at {n_fmt(last['nodes'])}")
+        lines.append(text + ".")
+    return lines + [""] if lines else []
+
+
+def draw_scaling_figure(rows: list[dict], fits: dict, cap_s: float | None, path: Path) -> str | None:
+    """The log-log figure; None when drawn, else why not."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError as e:  # the report stays standard-library only
+        return f"matplotlib unavailable ({e})"
+    fig, ax = plt.subplots(figsize=(10.0, 5.0))
+    styles = {"dense": ("tab:blue", "o"), "krylov": ("tab:orange", "s")}
+    all_nodes = [r["nodes"] for r in rows]
+    for p, (colour, marker) in styles.items():
+        ok = measured(rows, p)
+        if ok:
+            ax.loglog([r["nodes"] for r in ok], [r["step_cpu_s"] for r in ok], marker=marker, color=colour,
+                      label=f"{p}: CPU time per coupled step")
+            fk = [r for r in ok if is_number(r.get("factorize_cpu_s"))]
+            ax.loglog([r["nodes"] for r in fk], [r["factorize_cpu_s"] for r in fk], marker=marker, color=colour,
+                      linestyle=":", markerfacecolor="none", label=f"{p}: one factorisation of K")
+        for label, style in (("all", "--"), ("from_1000", "-.")):
+            fit = fits.get((p, label))
+            if fit:
+                lo, hi = fit["nodes"]
+                xs = [lo, hi]
+                ax.loglog(xs, [fit["prefactor"] * x ** fit["exponent"] for x in xs], linestyle=style, color=colour,
+                          alpha=0.6, label=f"{p}: fit {'all sizes' if label == 'all' else '>= 1,000'}: "
+                                           f"N^{fit['exponent']:.2f}")
+        if cap_s:
+            # Just above (dense) and below (krylov) the cap line, so that both paths show.
+            stopped = [r["nodes"] for r in rows if r["path"] == p and r["error"] is not None]
+            if stopped:
+                level = cap_s * (1.25 if p == "dense" else 0.8)
+                ax.loglog(stopped, [level] * len(stopped), linestyle="none", marker="x", color=colour,
+                          label=f"{p}: not measured (over the cap or not started), drawn at the cap")
+    measured_rows = [r for r in rows if r["error"] is None and is_number(r.get("step_cpu_s"))]
+    if measured_rows:
+        # A slope guide from a measured point, not a value: where N^1.2 would lead from there.
+        anchor = min(measured_rows, key=lambda r: abs(math.log(r["nodes"] / TARGET_NODES[0])))
+        xs = [anchor["nodes"], TARGET_NODES[1]]
+        c = anchor["step_cpu_s"] / anchor["nodes"] ** TARGET_EXPONENT
+        ax.loglog(xs, [c * x ** TARGET_EXPONENT for x in xs], color="grey", linestyle="--",
+                  label=f"slope of the target, N^{TARGET_EXPONENT}, from the measured size nearest 1,000")
+    if cap_s:
+        ax.axhline(cap_s, color="red", linewidth=0.8, alpha=0.6, label=f"cap: {cap_s:g} s CPU per step")
+    if all_nodes:
+        ax.set_xlim(min(all_nodes) / 1.5, max(max(all_nodes), TARGET_NODES[1]) * 1.5)
+    ax.set_xlabel("wetted nodes N")
+    ax.set_ylabel("seconds (CPU)")
+    ax.set_title("Coupled step and factorisation of K against network size")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return None
+
+
+def scaling_section(results: Path, figure_path: Path | None) -> tuple[list[str], bool]:
+    """The section "Network scaling" between its markers; False if the file is unreadable."""
+    lines = [SCALING_BEGIN, "## Network scaling", ""]
+    try:
+        ctx, benches = read_results(results)
+    except (OSError, ValueError, AttributeError) as e:
+        return lines + [f"**Unreadable:** `{results.name}`: {e}", "", SCALING_END], False
+    rows = scaling_rows(benches)
+    cap = ctx.get("step_cap_s")
+    try:
+        cap_s = float(cap) if cap is not None else None
+    except (TypeError, ValueError):
+        cap_s = None
+    load = ", ".join(fmt(x) for x in ctx["load_avg"]) if isinstance(ctx.get("load_avg"), list) else "?"
+    lines += [
+        f"From `{results.name}` (`benchmarks/bench_network_scaling.cpp`, run by `scripts/bench --scaling`): "
+        f"run {ctx.get('date', '?')}, host {ctx.get('host_name', '?')} ({ctx.get('num_cpus', '?')} CPUs, "
+        f"{ctx.get('cpu_model', '?')}), load average at the start {load}, HFDDA {ctx.get('hfdda_build_type', '?')}, "
+        f"{ctx.get('hfdda_threads', '?')}.",
+        "",
+        "The case: a fishbone network of fractures already open and full of fluid (a trunk through the centre, "
+        "ribs 8 m apart crossing it, a 4 m branch crossing each rib every 2 m; 24 ribs^2 + 1 wetted nodes) on a "
+        "structured mesh of 1 m triangles whose domain grows with the network; fluid at 0.1 MPa in joints "
+        "100 um wide, 0.5 kg/s injected at the centre, steps of 1 s, unbreakable joints (the network does not "
+        "change), penalty contacts. Why this network and these settings: the comment at the top of "
+        "`bench_network_scaling.cpp`. Per size, in a process of its own: one untimed warm-up step, then "
+        f"{ctx.get('timed_steps', '?')} timed steps, then one factorisation of K (`assemble_and_factorise`, "
+        f"median of 3). A size is stopped when one phase (model build, a step) uses more than "
+        f"{cap if cap is not None else '?'} s of CPU time, and the larger sizes of its path are then not started.",
+        "",
+        "Times are CPU seconds of the process (one thread), the measure used for the fits and the ratio: the "
+        "machine is shared, and a busy neighbour stretches wall time (given beside it) more than CPU time. "
+        "Iterations are per timed step; Krylov iterations and products with S count on the krylov path only "
+        "and cover the last attempt of a step that was cut. Memory is the peak resident set of the size's "
+        "process.",
+        ""]
+    ok_rows = [r for r in rows if r["error"] is None]
+    if ok_rows:
+        lines += ["| path | ribs | wetted nodes | blocks | CPU s / step | wall s / step | factorisation of K (CPU s) "
+                  "| step / factorisation | Newton its / step | Krylov its / step | S products / step "
+                  "| open-close its / step | building S, or its operator (wall s / step) | warm-up step (CPU s, Newton its) "
+                  "| peak memory (MB) |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+        for r in ok_rows:
+            g = lambda k: fmt(r.get(k))  # noqa: E731
+            lines.append(f"| {r['path']} | {r['ribs']} | {n_fmt(r['nodes'])} | {n_fmt(r.get('blocks', 0))} "
+                         f"| {g('step_cpu_s')} | {g('step_s')} | {g('factorize_cpu_s')} | {g('step_over_factorize')} "
+                         f"| {g('newton_per_step')} | {g('krylov_per_step')} | {g('s_products_per_step')} "
+                         f"| {g('outer_per_step')} | {g('sensitivity_s_per_step')} "
+                         f"| {g('warm_up_cpu_s')}, {g('warm_up_newton_per_step')} | {fmt(round(r.get('peak_rss_mb', 0)))} |")
+        lines.append("")
+    else:
+        lines += ["No size was measured.", ""]
+    lines += scaling_observations(rows)
+    stopped = [r for r in rows if r["error"] is not None]
+    if stopped:
+        lines += ["Not measured:", ""]
+        lines += [f"- {r['path']}, {r['ribs']} ribs ({n_fmt(r['nodes'])} wetted nodes): {fmt(r['error'])}"
+                  for r in stopped]
+        lines.append("")
+
+    fits = scaling_fits(rows)
+    lines += ["Fitted exponent a of CPU time per step ~ N^a (least squares on log-log):", "",
+              "| path | sizes >= 1,000 wetted nodes | all sizes | one factorisation of K, all sizes |",
+              "|---|---|---|---|"]
+    for p in ("dense", "krylov"):
+        cells = []
+        for label in ("from_1000", "all"):
+            f = fits.get((p, label))
+            cells.append("not measured (fewer than 2 sizes)" if f is None else
+                         f"{f['exponent']:.2f} ({f['sizes']} sizes, {n_fmt(f['nodes'][0])}-{n_fmt(f['nodes'][1])})")
+        f = fits.get((p, "factorisation"))
+        cells.append("" if f is None else f"{f['exponent']:.2f}")
+        lines.append(f"| {p} | " + " | ".join(cells) + " |")
+    lines += ["",
+              f"Target: time per coupled step growing at most as N^{TARGET_EXPONENT} from "
+              f"{TARGET_NODES[0]:,} to {TARGET_NODES[1]:,} wetted nodes:", ""]
+    lines += time_verdict(rows, fits)
+    lines += ["", f"Target: {MEMORY_TARGET_NODES:,} wetted nodes in {MEMORY_TARGET_MB / 1024:g} GB:", ""]
+    lines += memory_verdict(rows)
+    lines.append("")
+    if figure_path is not None:
+        why_not = draw_scaling_figure(rows, fits, cap_s, figure_path)
+        lines += ([f"![Network scaling]({SCALING_FIGURE})", ""] if why_not is None
+                  else [f"Figure not drawn: {why_not}.", ""])
+    lines.append(SCALING_END)
+    return lines, True
+
+
+def replace_scaling_section(text: str, section: list[str]) -> str:
+    """The report with its scaling section replaced, or appended if it has none."""
+    block = "\n".join(section)
+    begin, end = text.find(SCALING_BEGIN), text.find(SCALING_END)
+    if begin >= 0 and end > begin:
+        return text[:begin] + block + text[end + len(SCALING_END):]
+    return text.rstrip("\n") + "\n\n" + block + "\n"
+
+
+def update_scaling_section(scaling: Path, out: Path) -> int:
+    section, ok = scaling_section(scaling, out.parent / SCALING_FIGURE)
+    try:
+        text = out.read_text(encoding="utf-8")
+    except OSError:
+        text = "# HFDDA benchmarks\n"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(replace_scaling_section(text, section).rstrip("\n") + "\n", encoding="utf-8")
+    print(f"make_benchmarks: scaling section from {scaling}; wrote {out}", file=sys.stdout if ok else sys.stderr)
+    return 0 if ok else 1
+
+
 def git_commit() -> str:
     try:
         p = subprocess.run(["git", "-C", str(REPO_ROOT), "rev-parse", "--short", "HEAD"],
@@ -237,7 +554,7 @@ def utc_now() -> str:
     return now.strftime("%Y-%m-%d %H:%M:%S UTC")
 
 
-def write_report(results: Path, out: Path, comparison: Path | None = None) -> int:
+def write_report(results: Path, out: Path, comparison: Path | None = None, scaling: Path | None = None) -> int:
     files = sorted(results.glob("*.json")) if results.is_dir() else []
     lines = ["# HFDDA benchmarks", "",
              f"- generated: {utc_now()}",
@@ -260,6 +577,10 @@ def write_report(results: Path, out: Path, comparison: Path | None = None) -> in
         except (OSError, ValueError, AttributeError):
             pass  # reported by render_file below
     lines += threads_table(rows)
+    if scaling is not None:
+        section, readable = scaling_section(scaling, out.parent / SCALING_FIGURE)
+        ok &= readable
+        lines += section + [""]
     for f in files:
         section, readable = render_file(f)
         ok &= readable
@@ -272,11 +593,17 @@ def write_report(results: Path, out: Path, comparison: Path | None = None) -> in
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--results", type=Path, required=True, help="directory of Google Benchmark JSON files")
+    ap.add_argument("--results", type=Path, help="directory of Google Benchmark JSON files")
     ap.add_argument("--out", type=Path, required=True, help="markdown file to write")
     ap.add_argument("--comparison", type=Path, help="Markdown section to include (baseline comparison)")
+    ap.add_argument("--scaling", type=Path, help="JSON of bench_network_scaling: the section 'Network scaling' "
+                                                 "(alone, without --results: only that section of --out rewritten)")
     args = ap.parse_args(argv)
-    return write_report(args.results, args.out, args.comparison)
+    if args.results is None:
+        if args.scaling is None:
+            ap.error("give --results, --scaling or both")
+        return update_scaling_section(args.scaling, args.out)
+    return write_report(args.results, args.out, args.comparison, args.scaling)
 
 
 if __name__ == "__main__":

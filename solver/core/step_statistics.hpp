@@ -37,6 +37,8 @@ struct StepStatistics {
   int flow_solves = 0;              ///< one per contact iteration of a coupled step
   int flow_newton_iterations = 0;
   int flow_newton_restarts = 0;     ///< flow solves that needed a fallback start
+  long flow_krylov_iterations = 0;  ///< GMRES iterations of the flow Newton (flow_jacobian: krylov)
+  long flow_inexact_linear_solves = 0;  ///< GMRES solves stopped at their limit (inexact Newton steps)
   int max_flow_nodes = 0;
   double max_flow_residual = 0.0;   ///< largest relative mass residual of a flow solve
 
@@ -70,6 +72,8 @@ struct StepStatistics {
     flow_solves += later.flow_solves;
     flow_newton_iterations += later.flow_newton_iterations;
     flow_newton_restarts += later.flow_newton_restarts;
+    flow_krylov_iterations += later.flow_krylov_iterations;
+    flow_inexact_linear_solves += later.flow_inexact_linear_solves;
     max_flow_nodes = std::max(max_flow_nodes, later.max_flow_nodes);
     max_flow_residual = std::max(max_flow_residual, later.max_flow_residual);
     seconds_assembly += later.seconds_assembly;

@@ -147,6 +147,7 @@ Eigen::VectorXd ApertureOperator::solve(const Eigen::VectorXd& r) {
   Eigen::internal::gmres(JacobianProduct{this}, r, x, TwoLevel{this}, iterations, kRestart, error);
   iterations_ += iterations;
   if (!x.allFinite()) throw ConvergenceError("fluid flow: the Krylov solve of the mass balance diverged");
+  if (error > kLinearTolerance) ++inexact_solves_;  // GMRES stopped at its iteration limit
   return x;
 }
 

@@ -54,6 +54,7 @@ class ApertureOperator final : public fluid::ApertureModel {
   Eigen::VectorXd solve(const Eigen::VectorXd& r) override;
   long products() const override { return products_; }
   long linear_iterations() const override { return iterations_; }
+  long inexact_solves() const override { return inexact_solves_; }
   int n_aggregates() const { return static_cast<int>(aggregate_size_.size()); }
 
   /// J v for the last factorize (one product with S).
@@ -73,6 +74,7 @@ class ApertureOperator final : public fluid::ApertureModel {
   mutable Eigen::VectorXd rhs_;         // 6 nb work vector
   mutable long products_ = 0;
   long iterations_ = 0;
+  long inexact_solves_ = 0;
 
   Eigen::SparseMatrix<double> a_, e_;
   Eigen::VectorXd d_, d_coarse_;

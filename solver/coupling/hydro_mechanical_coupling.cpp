@@ -107,10 +107,12 @@ void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::Vec
   }
   fluid::FlowSolveStatistics fs;
   if (operator_) {
-    const long products = operator_->products(), iterations = operator_->linear_iterations();
+    const long products = operator_->products(), iterations = operator_->linear_iterations(),
+               inexact = operator_->inexact_solves();
     fs = network_.solve(base, *operator_);
     stats_.sensitivity_products += operator_->products() - products;
     stats_.krylov_iterations += operator_->linear_iterations() - iterations;
+    stats_.inexact_linear_solves += operator_->inexact_solves() - inexact;
   } else {
     fs = network_.solve(base, sensitivity_);
   }
@@ -164,6 +166,8 @@ void HydroMechanicalCoupling::add_statistics(StepStatistics& step) const {
   step.flow_solves += stats_.flow_solves;
   step.flow_newton_iterations += stats_.newton_iterations;
   step.flow_newton_restarts += stats_.newton_restarts;
+  step.flow_krylov_iterations += stats_.krylov_iterations;
+  step.flow_inexact_linear_solves += stats_.inexact_linear_solves;
   step.max_flow_nodes = std::max(step.max_flow_nodes, stats_.max_nodes);
   step.max_flow_residual = std::max(step.max_flow_residual, stats_.max_relative_residual);
   step.seconds_sensitivity += stats_.seconds_sensitivity;

@@ -43,6 +43,7 @@ struct CouplingStatistics {
   double seconds_flow = 0.0;
   long sensitivity_products = 0;  ///< products with the operator S (krylov)
   long krylov_iterations = 0;
+  long inexact_linear_solves = 0;   ///< Krylov solves stopped at their limit (inexact Newton steps)
 };
 
 /// Couples a FlowNetwork whose fractures are the mesh joints (same indices) with the

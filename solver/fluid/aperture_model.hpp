@@ -35,6 +35,9 @@ class ApertureModel {
   /// Products with S and inner linear iterations since construction (operator models).
   virtual long products() const { return 0; }
   virtual long linear_iterations() const { return 0; }
+  /// Solves whose inner iteration stopped at its limit before its tolerance; Newton
+  /// then takes the inexact step (its own test is on the mass residual), counted here.
+  virtual long inexact_solves() const { return 0; }
 };
 
 /// S held as a dense matrix; J formed densely and factorised by LU with partial pivoting.

@@ -15,6 +15,19 @@ namespace hfdda::io {
 
 using namespace schema;
 
+bool has_distributions(const CaseConfig& c) {
+  bool any = c.joints.tensile_strength_law || c.joints.friction_angle_law || c.joints.hydraulic_width_law ||
+             c.far_field.sxx_law || c.far_field.syy_law || c.far_field.sxy_law ||
+             (c.fluid && c.fluid->viscosity_law);
+  for (const MaterialConfig& z : c.materials) any = any || z.youngs_modulus_law || z.poissons_ratio_law;
+  for (const FractureConfig& f : c.fractures)
+    any = any || f.tensile_strength_law || f.friction_angle_law || f.hydraulic_width_law;
+  for (const FractureSetConfig& s : c.fracture_sets)
+    any = any || s.tensile_strength_law || s.friction_angle_law || s.hydraulic_width_law;
+  for (const InjectionConfig& i : c.injections) any = any || i.mass_rate_law;
+  return any;
+}
+
 std::string domain_text(const Rect& r) {
   std::string text = "[";  // appended: `"[" + std::string` trips a false -Wrestrict in GCC 12
   text += format_number(r.xmin) + ", " + format_number(r.xmax) + "] x [" +
@@ -207,10 +220,23 @@ void check_stress_sides(const MergedChecker& m, const std::string& section, doub
 
 namespace {
 
+/// A stress component as the side checks see it: given as a distribution, its value of
+/// largest magnitude (non-zero if the law can give anything but zero).
+double largest_stress(double value, const ParameterLaw& law) {
+  if (!law) return value;
+  return std::abs(law->lowest()) > std::abs(law->highest()) ? law->lowest() : law->highest();
+}
+
 void check_far_field_sides(const CaseConfig& c, const MergedChecker& m) {
   if (c.far_field.in_situ) return;  // the in-situ stress acts on all four sides
   const FarFieldConfig& f = c.far_field;
-  check_stress_sides(m, "far_field", f.sxx_Pa, f.syy_Pa, f.sxy_Pa, f.sides, "the far-field stress");
+  check_stress_sides(m, "far_field", largest_stress(f.sxx_Pa, f.sxx_law), largest_stress(f.syy_Pa, f.syy_law),
+                     largest_stress(f.sxy_Pa, f.sxy_law), f.sides, "the far-field stress");
+}
+
+void check_random_seed(const CaseConfig& c, const MergedChecker& m) {
+  if (m.present("random_seed") && !has_distributions(c))
+    m.fail("random_seed", "is only used by keys given as distributions (there is none)");
 }
 
 /// A prescribed pressure loads the faces of open joints; on a bonded joint the bond
@@ -384,7 +410,8 @@ const std::vector<CrossCheck>& cross_checks() {
       {"`fracture_sets` need `mesh.type: delaunay`; `network_seed` needs a fracture set; set names are distinct and "
        "differ from the names of `fractures`, `fracture_maps` and `breakable_patterns`; a set's `length.min` (or "
        "`length.median`) is at most the diagonal of `domain.outer`.",
-       check_fracture_sets}};
+       check_fracture_sets},
+      {"`random_seed` needs a key given as a distribution.", check_random_seed}};
   return checks;
 }
 

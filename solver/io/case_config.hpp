@@ -2,6 +2,11 @@
 // In-memory form of a YAML case file. Every parameter of the seed's tables can be
 // written; units are SI and appear in the field names. Defaults below are the
 // documented defaults (docs/case_file.md lists them with their allowed ranges).
+//
+// The keys the seed draws from distributions in its Monte Carlo runs (section 5.5) may be
+// given one instead of a number: the law is then kept in the member `<name>_law` beside
+// the number, which holds the law's central value until the model draws it (once per
+// run, block by block or joint by joint; docs/distributions.md).
 
 #include <optional>
 #include <string>
@@ -9,8 +14,12 @@
 
 #include "core/geometry.hpp"
 #include "mesh/mesh.hpp"
+#include "stochastic/scalar_distribution.hpp"
 
 namespace hfdda::io {
+
+/// The distribution a key was given instead of a number (none: the number holds).
+using ParameterLaw = std::optional<stochastic::ScalarDistribution>;
 
 struct DomainConfig {
   Rect outer{-50, 50, -50, 50};
@@ -41,6 +50,7 @@ struct MaterialConfig {
   double youngs_modulus_Pa = 25.0e9;  // seed Table 3.1
   double poissons_ratio = 0.25;
   double density_kg_m3 = 2650.0;
+  ParameterLaw youngs_modulus_law, poissons_ratio_law;  ///< drawn block by block (seed 5.5)
   int line = 0;  ///< case-file line of the list item
 };
 
@@ -53,6 +63,8 @@ struct JointConfig {
   double friction_angle_deg = 30.0;
   /// Hydraulic width w0 [m] a closed joint keeps for flow (0: intact rock, no flow until it opens).
   double hydraulic_width_m = 0.0;
+  /// Drawn joint by joint (seed 5.5), on the joints no fracture overrides.
+  ParameterLaw tensile_strength_law, friction_angle_law, hydraulic_width_law;
   bool breakable = true;
   /// "all" or "inner": only joints between two blocks of domain.inner may break
   /// (fracture overrides still apply).
@@ -75,6 +87,8 @@ struct FractureConfig {
   /// Hydraulic width w0 of its joints while mechanically closed (seed Table 5.1: 1 um for
   /// natural fractures): fluid invades them through it; unset: joints.hydraulic_width.
   std::optional<double> hydraulic_width_m;
+  /// Drawn joint by joint over its joints (seed 5.5).
+  ParameterLaw tensile_strength_law, friction_angle_law, hydraulic_width_law;
   std::optional<double> pressure_Pa;  ///< prescribed fluid pressure on its joints
   /// Initially open joints that start filled with fluid (at zero pressure) and join the
   /// flow network from t = 0 (seed 3.2: the joints at the injection point).
@@ -146,6 +160,8 @@ struct FractureSetConfig {
   double seed_fraction = 0.12;          ///< seed 5.3: 12 % of the candidates
   FractureLengthConfig length;
   std::optional<double> tensile_strength_Pa, cohesion_Pa, friction_angle_deg, hydraulic_width_m;
+  /// Drawn joint by joint over the joints of its fractures (seed 5.5, Tables 5.5, 5.6).
+  ParameterLaw tensile_strength_law, friction_angle_law, hydraulic_width_law;
   int line = 0;
 };
 
@@ -155,6 +171,7 @@ struct FluidConfig {
   double density_kg_m3 = 1000.0;        ///< reference density rho0 (eq. 2.6)
   double bulk_modulus_Pa = 2.2e9;       ///< Kf; compressibility c_f = 1 / Kf
   double viscosity_Pa_s = 1.0e-3;       ///< mu (cubic law, eq. 2.2)
+  ParameterLaw viscosity_law;           ///< drawn once per run (seed 5.5)
   double reference_pressure_Pa = 0.0;   ///< p0 of eq. 2.6
   /// Carter coefficient C_L of each wall [m/s^0.5]; both walls leak (erratum 4 in docs/seed_errata.md).
   double leak_off_coefficient_m_sqrt_s = 0.0;
@@ -165,6 +182,7 @@ struct InjectionConfig {
   std::string name = "injection";
   Vec2 at{0, 0};
   double mass_rate_kg_s = 0.0;          ///< per metre of out-of-plane thickness
+  ParameterLaw mass_rate_law;           ///< drawn once per run (seed 5.5)
   double start_time_s = 0.0;
   int line = 0;
 };
@@ -180,6 +198,7 @@ struct ProbeConfig {
 /// listed sides of the outer boundary (the seed applies it on top and bottom).
 struct FarFieldConfig {
   double sxx_Pa = 0.0, syy_Pa = 0.0, sxy_Pa = 0.0;
+  ParameterLaw sxx_law, syy_law, sxy_law;  ///< drawn once per run (seed 5.6)
   std::vector<std::string> sides{"top", "bottom"};  ///< subset of left/right/bottom/top
   /// true: the rock starts in equilibrium with the stress (initial block stresses and
   /// joint contact forces, the traction on all four sides); no loading transient and no
@@ -291,6 +310,9 @@ struct CaseConfig {
   /// their random numbers: the same seed gives the same network on every machine.
   std::vector<FractureSetConfig> fracture_sets;
   int network_seed = 0;
+  /// Seed of the draws of the keys given as distributions (docs/distributions.md): the
+  /// same seed gives the same values on every machine. It does not change the network.
+  int random_seed = 1;
   FarFieldConfig far_field;
   std::optional<LoadRampConfig> load_ramp;  ///< absent: loads constant, time stepping to end_time
   std::vector<PointLoadConfig> point_loads;
@@ -304,6 +326,9 @@ struct CaseConfig {
   TimeConfig time;
   OutputConfig output;
 };
+
+/// Whether any key of the case is given as a distribution.
+bool has_distributions(const CaseConfig& config);
 
 /// Reads and validates a case file (and the file named by its `extends:` key, whose
 /// values it overrides). Throws InputError naming file, line, key and rule on an

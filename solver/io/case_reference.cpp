@@ -130,6 +130,31 @@ marked *required*. A complete example is
     - {name: J2, azimuth: 135, seed_fraction: 0.12, length: {min: 20, max: 40},
        tensile_strength: 0, cohesion: 0, friction_angle: 35, hydraulic_width: 1.0e-4}
   ```
+- Parameter distributions: a key of type `number or distribution` (Young's modulus,
+  Poisson's ratio, the tensile strength, friction angle and hydraulic width of `joints`,
+  `fractures` and `fracture_sets`, the far-field stresses, the viscosity, the injection
+  rates) takes a law instead of a number, as the seed's Monte Carlo runs do (5.5, 5.6).
+  The stresses, viscosity and rates are drawn once per run, Young's modulus and
+  Poisson's ratio block by block, strengths, friction angles and widths joint by joint;
+  `random_seed` fixes the draws, which `hfdda run` lists in summary.json. Laws, formulas
+  and choices: docs/distributions.md. The rock and stresses of Table 5.6 (its tensile
+  strength bounds put right, erratum 9 in docs/seed_errata.md):
+
+  ```yaml
+  random_seed: 1
+  materials:
+    - name: shale
+      density: 2500
+      youngs_modulus: {distribution: triangular, min: 31.2e9, mode: 33.47e9, max: 34.2e9}
+      poissons_ratio: {distribution: triangular, min: 0.16, mode: 0.17, max: 0.18}
+  joints:
+    tensile_strength: {distribution: log_triangular, min: 5.7e6, mode: 9.02e6, max: 12.4e6}
+    friction_angle: {distribution: triangular, min: 25, mode: 30, max: 35}
+  far_field:
+    sxx: {distribution: triangular, min: -36.0e6, mode: -32.0e6, max: -28.0e6}
+    syy: {distribution: triangular, min: -12.0e6, mode: -10.0e6, max: -8.0e6}
+    in_situ: true
+  ```
 )";
 
 }  // namespace

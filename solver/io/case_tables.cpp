@@ -11,6 +11,7 @@
 #include "io/fracture_sets.hpp"
 #include "io/case_fields.hpp"
 #include "io/load_ramp_keys.hpp"
+#include "io/sampled_fields.hpp"
 
 namespace hfdda::io {
 
@@ -106,12 +107,17 @@ const Table<MaterialConfig>& material_table() {
                                    {"box", "box"}}),
        rect({"box", "m", "", "zone of region 'box'"}, &MaterialConfig::box,
             "overlaps domain.outer", "none"),
-       number({"youngs_modulus", "Pa", "Table 3.1: E = 25 GPa", "Young's modulus"},
-              &MaterialConfig::youngs_modulus_Pa, interval(kMinYoungsModulus, false, kMaxModulus, false),
+       sampled_number({"youngs_modulus", "Pa", "Table 3.1: E = 25 GPa; §5.5, Tables 5.5, 5.6: triangular",
+                       "Young's modulus; the contact and fixed-point springs scale with the largest value it can "
+                       "take"},
+              &MaterialConfig::youngs_modulus_Pa, &MaterialConfig::youngs_modulus_law,
+              interval(kMinYoungsModulus, false, kMaxModulus, false), SamplingScope::block,
               "from gelatin, the softest solid fractured in laboratory experiments (1e3 to 1e4 Pa), "
               "to above any solid (diamond: 1.2e12)"),
-       number({"poissons_ratio", "-", "Table 3.1: nu = 0.25", "Poisson's ratio (plane strain)"},
-              &MaterialConfig::poissons_ratio, interval(0, false, 0.5, true)),
+       sampled_number({"poissons_ratio", "-", "Table 3.1: nu = 0.25; §5.5, Tables 5.5, 5.6: triangular",
+                       "Poisson's ratio (plane strain)"},
+                      &MaterialConfig::poissons_ratio, &MaterialConfig::poissons_ratio_law,
+                      interval(0, false, 0.5, true), SamplingScope::block),
        number({"density", "kg/m^3", "Table 3.1: rho_r = 2650 kg/m^3", "rock density"},
               &MaterialConfig::density_kg_m3, positive_up_to(kMaxDensity),
               "above any solid (osmium: 2.3e4)")}};
@@ -121,9 +127,12 @@ const Table<MaterialConfig>& material_table() {
 /// joints.tensile_strength: written in a later file of the extends chain, it replaces an
 /// inherited fracture_toughness (the later file's choice wins).
 Field<JointConfig> joint_tensile_strength() {
-  Field<JointConfig> field = number({"tensile_strength", "Pa", "Table 3.1: T0 = 0; Table 5.1: T0 = 6 MPa",
-                                     "tensile strength T0 of intact bonds (seed eq. 2.16)"},
-                                    &JointConfig::tensile_strength_Pa, zero_to(kMaxStrength));
+  Field<JointConfig> field =
+      sampled_number({"tensile_strength", "Pa",
+                      "Table 3.1: T0 = 0; Table 5.1: T0 = 6 MPa; §5.5, Tables 5.5, 5.6: triangular on log10",
+                      "tensile strength T0 of intact bonds (seed eq. 2.16)"},
+                     &JointConfig::tensile_strength_Pa, &JointConfig::tensile_strength_law, zero_to(kMaxStrength),
+                     SamplingScope::joint);
   field.read = [read = field.read](FileReader& r, const YAML::Node& n, const std::string& key, JointConfig& out) {
     read(r, n, key, out);
     out.fracture_toughness_Pa_sqrt_m.reset();
@@ -147,12 +156,15 @@ const Table<JointConfig>& joint_table() {
        number({"cohesion", "Pa", "Tables 5.1, 5.3: C0",
                "cohesion C0 of intact bonds (seed eq. 2.16)"},
               &JointConfig::cohesion_Pa, zero_to(kMaxStrength)),
-       number({"friction_angle", "deg", "Table 3.1: phi = 30 deg", "friction angle phi"},
-              &JointConfig::friction_angle_deg, interval(0, false, 90, true)),
-       number({"hydraulic_width", "m", "Table 5.1: natural fracture w0 = 1 um",
-               "w0: width through which fluid flows along a mechanically closed joint (the hydraulic width "
-               "is the opening plus w0); 0: fluid enters a joint only once it opens"},
-              &JointConfig::hydraulic_width_m, zero_to(kMaxHydraulicWidth)),
+       sampled_number({"friction_angle", "deg", "Table 3.1: phi = 30 deg; §5.5, Tables 5.5, 5.6: triangular",
+                       "friction angle phi"},
+                      &JointConfig::friction_angle_deg, &JointConfig::friction_angle_law,
+                      interval(0, false, 90, true), SamplingScope::joint),
+       sampled_number({"hydraulic_width", "m", "Table 5.1: natural fracture w0 = 1 um",
+                       "w0: width through which fluid flows along a mechanically closed joint (the hydraulic width "
+                       "is the opening plus w0); 0: fluid enters a joint only once it opens"},
+                      &JointConfig::hydraulic_width_m, &JointConfig::hydraulic_width_law,
+                      zero_to(kMaxHydraulicWidth), SamplingScope::joint),
        boolean({"breakable", "", "§2.3", "false: intact bonds never break"},
                &JointConfig::breakable),
        choice({"breakable_region", "", "§3.4: fracturing in the inner domain only",
@@ -219,23 +231,23 @@ const Table<FractureConfig>& fracture_table() {
        optional_boolean({"breakable", "", "§4.5: fracturing confined to one line",
                          "whether its intact bonds may break"},
                         &FractureConfig::breakable, "joints.breakable"),
-       optional_number({"tensile_strength", "Pa", "Table 5.1: natural fracture T0 = 0",
-                        "tensile strength T0 of its bonds"},
-                       &FractureConfig::tensile_strength_Pa, zero_to(kMaxStrength),
-                       "joints.tensile_strength"),
+       optional_sampled_number({"tensile_strength", "Pa", "Table 5.1: natural fracture T0 = 0",
+                                "tensile strength T0 of its bonds"},
+                               &FractureConfig::tensile_strength_Pa, &FractureConfig::tensile_strength_law,
+                               zero_to(kMaxStrength), "joints.tensile_strength", SamplingScope::joint),
        fracture_toughness_key("T0 of its bonds", &FractureConfig::fracture_toughness_Pa_sqrt_m,
                               "joints.fracture_toughness"),
        optional_number({"cohesion", "Pa", "Table 5.1: natural fracture C0 = 0",
                         "cohesion C0 of its bonds"},
                        &FractureConfig::cohesion_Pa, zero_to(kMaxStrength), "joints.cohesion"),
-       optional_number({"friction_angle", "deg", "Table 5.1: natural fracture phi = 35 deg",
-                        "friction angle of its joints"},
-                       &FractureConfig::friction_angle_deg, interval(0, false, 90, true),
-                       "joints.friction_angle"),
-       optional_number({"hydraulic_width", "m", "Table 5.1: natural fracture w0 = 1 um",
-                        "w0 of its joints: fluid invades them through this width while they are closed"},
-                       &FractureConfig::hydraulic_width_m, zero_to(kMaxHydraulicWidth),
-                       "joints.hydraulic_width"),
+       optional_sampled_number({"friction_angle", "deg", "Table 5.1: natural fracture phi = 35 deg",
+                                "friction angle of its joints"},
+                               &FractureConfig::friction_angle_deg, &FractureConfig::friction_angle_law,
+                               interval(0, false, 90, true), "joints.friction_angle", SamplingScope::joint),
+       optional_sampled_number({"hydraulic_width", "m", "Table 5.1: natural fracture w0 = 1 um",
+                                "w0 of its joints: fluid invades them through this width while they are closed"},
+                               &FractureConfig::hydraulic_width_m, &FractureConfig::hydraulic_width_law,
+                               zero_to(kMaxHydraulicWidth), "joints.hydraulic_width", SamplingScope::joint),
        optional_number({"pressure", "Pa", "§3.1: 9.81 MPa",
                         "fluid pressure prescribed on the faces of its open joints: from t = 0 with "
                         "initially_open: true; without it only on joints that break open during the run, so "
@@ -275,9 +287,10 @@ const Table<FluidConfig>& fluid_table() {
               &FluidConfig::bulk_modulus_Pa, interval(kMinFluidBulkModulus, false, kMaxModulus, false),
               "from a gas at atmospheric pressure (isothermal K = p = 1e5 Pa; liquids: 1e9 to 1e10), "
               "below which fluid storage swamps the mass balance"),
-       number({"viscosity", "Pa s", "Table 3.1: mu = 1 mPa s; Table 5.3: 20 mPa s",
-               "dynamic viscosity mu"},
-              &FluidConfig::viscosity_Pa_s, interval(kMinViscosity, false, 1e6, false),
+       sampled_number({"viscosity", "Pa s", "Table 3.1: mu = 1 mPa s; Table 5.3: 20 mPa s; §5.5, §5.6: triangular",
+                       "dynamic viscosity mu"},
+                      &FluidConfig::viscosity_Pa_s, &FluidConfig::viscosity_law,
+                      interval(kMinViscosity, false, 1e6, false), SamplingScope::realisation,
               "from below any gas (hydrogen: 9e-6 Pa s); the cubic-law conductance grows as 1 / mu"),
        number({"reference_pressure", "Pa", "eq. 2.6: p0",
                "pressure p0 at which the density is rho0"},
@@ -300,9 +313,10 @@ const Table<InjectionConfig>& injection_table() {
        required(point({"at", "m", "§3.2: injection at the origin",
                        "injection point: a mesh point (within 1e-6 of the domain size) on a joint of a `fluid_filled` fracture"},
                       &InjectionConfig::at, "inside domain.outer")),
-       required(number({"mass_rate", "kg/s", "§3.2: Q0 = 4 kg/s; §3.4: 1 kg/s",
-                        "injected mass per second and per metre of out-of-plane thickness"},
-                       &InjectionConfig::mass_rate_kg_s, positive_up_to(1e6))),
+       required(sampled_number({"mass_rate", "kg/s", "§3.2: Q0 = 4 kg/s; §3.4: 1 kg/s; §5.5, §5.6: triangular",
+                                "injected mass per second and per metre of out-of-plane thickness"},
+                               &InjectionConfig::mass_rate_kg_s, &InjectionConfig::mass_rate_law,
+                               positive_up_to(1e6), SamplingScope::realisation)),
        number({"start_time", "s", "", "time at which injection starts (then continues)"},
               &InjectionConfig::start_time_s, zero_to(kMaxTime))}};
   return table;
@@ -328,14 +342,17 @@ const Table<FarFieldConfig>& far_field_table() {
       "`far_field`",
       "Far-field stress, tension positive, applied as tractions t = sigma . n on the listed "
       "sides of `domain.outer` (a 5 MPa compression is `syy: -5e6`).",
-      {number({"sxx", "Pa", "Table 5.4: sigma_1, sigma_3", "normal stress along x"},
-              &FarFieldConfig::sxx_Pa, magnitude_up_to(kMaxStress),
-              "10 x the strength of the strongest rock"),
-       number({"syy", "Pa", "§3.1: 5 MPa background stress", "normal stress along y"},
-              &FarFieldConfig::syy_Pa, magnitude_up_to(kMaxStress),
-              "10 x the strength of the strongest rock"),
-       number({"sxy", "Pa", "", "shear stress"}, &FarFieldConfig::sxy_Pa, magnitude_up_to(kMaxStress),
-              "10 x the strength of the strongest rock"),
+      {sampled_number({"sxx", "Pa", "Table 5.4: sigma_1, sigma_3; §5.6, Table 5.6: triangular",
+                       "normal stress along x"},
+                      &FarFieldConfig::sxx_Pa, &FarFieldConfig::sxx_law, magnitude_up_to(kMaxStress),
+                      SamplingScope::realisation, "10 x the strength of the strongest rock"),
+       sampled_number({"syy", "Pa", "§3.1: 5 MPa background stress; §5.6, Table 5.6: triangular",
+                       "normal stress along y"},
+                      &FarFieldConfig::syy_Pa, &FarFieldConfig::syy_law, magnitude_up_to(kMaxStress),
+                      SamplingScope::realisation, "10 x the strength of the strongest rock"),
+       sampled_number({"sxy", "Pa", "", "shear stress"}, &FarFieldConfig::sxy_Pa, &FarFieldConfig::sxy_law,
+                      magnitude_up_to(kMaxStress), SamplingScope::realisation,
+                      "10 x the strength of the strongest rock"),
        choice_list({"sides", "", "§3.1: upper and lower boundaries",
                     "sides of domain.outer loaded by the far-field stress; the traction sigma . n puts sxx on "
                     "left and right, syy on bottom and top, so a non-zero sxx needs left or right, a non-zero "
@@ -518,6 +535,11 @@ const Table<CaseConfig>& case_table() {
        fracture_maps_key(),
        fracture_sets_key(),
        network_seed_key(),
+       integer({"random_seed", "", "§5.5: \"all distributions were sampled using pre-defined seeds\"",
+                "seed of the draws of the keys given as distributions: the same seed gives the same values on "
+                "every machine; it leaves the network of fracture_sets alone (network_seed sets that)"},
+               &CaseConfig::random_seed, interval(0, false, 2147483647, false),
+               "only with a key given as a distribution"),
        section({"far_field", "", "§3.1: background stress", "far-field stress"},
                &CaseConfig::far_field, &far_field_table),
        load_ramp_key(),

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "io/case_fields.hpp"
+#include "io/sampled_fields.hpp"
 
 namespace hfdda::io {
 
@@ -105,17 +106,24 @@ const Table<FractureSetConfig>& set_table() {
                        &S::seed_fraction, interval(0, true, 1, false))),
        required(section({"length", "", "§5.3: uniform, 20 to 40 m", "distribution of the fracture lengths"},
                         &S::length, &length_table, check_length)),
-       optional_number({"tensile_strength", "Pa", "Table 5.3: natural fracture T0 = 0",
-                        "tensile strength T0 of its bonds"},
-                       &S::tensile_strength_Pa, zero_to(kMaxStrength), "joints.tensile_strength"),
+       optional_sampled_number({"tensile_strength", "Pa", "Table 5.3: natural fracture T0 = 0; Tables 5.5, 5.6: "
+                                "triangular on log10",
+                                "tensile strength T0 of its bonds"},
+                               &S::tensile_strength_Pa, &S::tensile_strength_law, zero_to(kMaxStrength),
+                               "joints.tensile_strength", SamplingScope::joint),
        optional_number({"cohesion", "Pa", "Table 5.3: natural fracture C0 = 0", "cohesion C0 of its bonds"},
                        &S::cohesion_Pa, zero_to(kMaxStrength), "joints.cohesion"),
-       optional_number({"friction_angle", "deg", "Table 5.3: natural fracture phi = 35 deg",
-                        "friction angle of its joints"},
-                       &S::friction_angle_deg, interval(0, false, 90, true), "joints.friction_angle"),
-       optional_number({"hydraulic_width", "m", "Table 5.3: natural fracture w0 = 100 um",
-                        "w0 of its joints: fluid invades them through this width while they are closed"},
-                       &S::hydraulic_width_m, zero_to(kMaxHydraulicWidth), "joints.hydraulic_width")}};
+       optional_sampled_number({"friction_angle", "deg",
+                                "Table 5.3: natural fracture phi = 35 deg; Tables 5.5, 5.6: triangular, 25 to 35 deg",
+                                "friction angle of its joints"},
+                               &S::friction_angle_deg, &S::friction_angle_law, interval(0, false, 90, true),
+                               "joints.friction_angle", SamplingScope::joint),
+       optional_sampled_number({"hydraulic_width", "m",
+                                "Table 5.3: natural fracture w0 = 100 um; Tables 5.5, 5.6: triangular on log10, "
+                                "80 to 200 um",
+                                "w0 of its joints: fluid invades them through this width while they are closed"},
+                               &S::hydraulic_width_m, &S::hydraulic_width_law, zero_to(kMaxHydraulicWidth),
+                               "joints.hydraulic_width", SamplingScope::joint)}};
   return table;
 }
 

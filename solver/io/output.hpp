@@ -1,6 +1,8 @@
 #pragma once
 // Output contract of a run directory (later issues and users rely on it):
-//   summary.json              status (completed, failed, interrupted), steps, wall time, statistics
+//   summary.json              status (completed, failed, interrupted), steps, wall time, statistics;
+//                             with keys given as distributions, random_seed and sampled_parameters
+//                             (each key's law and its value, or the count, min, mean and max of its draws)
 //   history.csv               one row per step
 //   joints/joints_NNNNNN.csv  per-joint state at output times; joints/joints_final.csv
 //   vtu/blocks_NNNNNN.vtu, vtu/joints_NNNNNN.vtu with blocks.pvd and joints.pvd series

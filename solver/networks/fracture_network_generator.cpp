@@ -4,19 +4,15 @@
 
 #include "networks/fracture_network_generator.hpp"
 
-#include <gsl/gsl_cdf.h>
-#include <gsl/gsl_randist.h>
-#include <gsl/gsl_rng.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <memory>
 #include <numbers>
 
 #include "core/errors.hpp"
+#include "stochastic/scalar_distribution.hpp"
 
 namespace hfdda::networks {
 
@@ -49,38 +45,17 @@ double line_angle_deg(const Vec2& d, const Vec2& u) {
   return std::atan2(std::abs(d.x() * u.y() - d.y() * u.x()), std::abs(d.dot(u))) / kDegree;
 }
 
-struct RngDeleter {
-  void operator()(gsl_rng* r) const { gsl_rng_free(r); }
-};
-using Rng = std::unique_ptr<gsl_rng, RngDeleter>;
-
-/// Inverse CDF of the triangular law (GSL has no triangular sampler).
-double triangular_quantile(const LengthLaw& law, double u) {
-  const double a = law.min_m, b = law.max_m, c = law.mode_m;
-  if (b <= a) return a;
-  if (u < (c - a) / (b - a)) return a + std::sqrt(u * (b - a) * (c - a));
-  return b - std::sqrt((1.0 - u) * (b - a) * (b - c));
-}
-
-/// Inverse CDF of the density ~ L^-a truncated to [min, max] (GSL's Pareto law is not
-/// truncated). Written in t = L / min with expm1 and log1p, so that neither a tiny min
-/// nor an exponent near 1 loses the result to overflow or cancellation.
-double power_law_quantile(const LengthLaw& law, double u) {
-  const double lo = law.min_m, hi = law.max_m, k = 1.0 - law.exponent;
-  if (hi <= lo) return lo;
-  const double log_r = std::log(hi / lo);
-  if (std::abs(k * log_r) < 1e-12) return std::clamp(lo * std::exp(u * log_r), lo, hi);
-  return std::clamp(lo * std::exp(std::log1p(u * std::expm1(k * log_r)) / k), lo, hi);
-}
-
-double draw_length(gsl_rng* rng, const LengthLaw& law) {
+/// The law of a set's target lengths as a scalar distribution (one sampler for the
+/// lengths and the case-file parameters).
+stochastic::ScalarDistribution length_distribution(const LengthLaw& law) {
+  using stochastic::ScalarDistribution;
   switch (law.distribution) {
-    case LengthDistribution::uniform: return gsl_ran_flat(rng, law.min_m, law.max_m);
-    case LengthDistribution::triangular: return triangular_quantile(law, gsl_rng_uniform(rng));
-    case LengthDistribution::lognormal: return gsl_ran_lognormal(rng, std::log(law.median_m), law.sigma);
-    case LengthDistribution::power_law: return power_law_quantile(law, gsl_rng_uniform(rng));
+    case LengthDistribution::uniform: return ScalarDistribution::uniform(law.min_m, law.max_m);
+    case LengthDistribution::triangular: return ScalarDistribution::triangular(law.min_m, law.mode_m, law.max_m);
+    case LengthDistribution::lognormal: return ScalarDistribution::lognormal(law.median_m, law.sigma);
+    case LengthDistribution::power_law: return ScalarDistribution::power_law(law.exponent, law.min_m, law.max_m);
   }
-  return 0.0;
+  return ScalarDistribution::uniform(law.min_m, law.max_m);
 }
 
 /// Joints meeting at each mesh point, in ascending joint id.
@@ -163,31 +138,7 @@ void grow(const mesh::Mesh& m, const std::vector<std::vector<int>>& joints_at, c
 
 }  // namespace
 
-double length_cdf(const LengthLaw& law, double x) {
-  const double lo = law.min_m, hi = law.max_m;
-  switch (law.distribution) {
-    case LengthDistribution::uniform:
-      if (hi <= lo) return x >= lo ? 1.0 : 0.0;
-      return gsl_cdf_flat_P(x, lo, hi);
-    case LengthDistribution::triangular: {
-      const double c = law.mode_m;
-      if (x <= lo) return hi <= lo && x == lo ? 1.0 : 0.0;
-      if (x >= hi) return 1.0;
-      if (x <= c) return (x - lo) * (x - lo) / ((hi - lo) * (c - lo));
-      return 1.0 - (hi - x) * (hi - x) / ((hi - lo) * (hi - c));
-    }
-    case LengthDistribution::lognormal:
-      return x <= 0.0 ? 0.0 : gsl_cdf_lognormal_P(x, std::log(law.median_m), law.sigma);
-    case LengthDistribution::power_law: {
-      if (x < lo) return 0.0;
-      if (x >= hi) return 1.0;
-      const double k = 1.0 - law.exponent, log_t = std::log(x / lo), log_r = std::log(hi / lo);
-      if (std::abs(k * log_r) < 1e-12) return log_t / log_r;
-      return std::expm1(k * log_t) / std::expm1(k * log_r);
-    }
-  }
-  return 0.0;
-}
+double length_cdf(const LengthLaw& law, double x) { return length_distribution(law).cdf(x); }
 
 void validate_settings(const FractureSetSettings& s, const std::string& prefix) {
   const auto key = [&](const std::string& name) { return prefix + "." + name; };
@@ -243,18 +194,7 @@ double azimuth_difference_deg(double a_deg, double b_deg) {
 }
 
 unsigned long set_generator_seed(std::uint64_t seed, const std::string& set_name) {
-  // FNV-1a of the name, then splitmix64 of it with the seed: well-spread generator seeds
-  // for neighbouring network seeds and similar names.
-  std::uint64_t name_hash = 14695981039346656037ull;
-  for (const char ch : set_name) {
-    name_hash ^= static_cast<unsigned char>(ch);
-    name_hash *= 1099511628211ull;
-  }
-  std::uint64_t z = seed * 0x9E3779B97F4A7C15ull + name_hash;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  z ^= z >> 31;
-  return static_cast<unsigned long>(z & 0xFFFFFFFFull);  // GSL's mt19937 uses 32 bits of its seed
+  return stochastic::stream_seed(seed, set_name);
 }
 
 FractureNetwork generate_fracture_network(const mesh::Mesh& m, const std::vector<FractureSetSettings>& sets,
@@ -270,9 +210,7 @@ FractureNetwork generate_fracture_network(const mesh::Mesh& m, const std::vector
   for (std::size_t k = 0; k < sets.size(); ++k) {
     const FractureSetSettings& set = sets[k];
     SetStatistics& stats = network.sets[k];
-    Rng rng(gsl_rng_alloc(gsl_rng_mt19937));
-    if (!rng) throw ModelError("generate_fracture_network: cannot allocate a GSL generator");
-    gsl_rng_set(rng.get(), set_generator_seed(seed, set.name));
+    const stochastic::RandomStream rng(seed, set.name);
     // All draws first, in joint-id order, so they do not depend on how fractures grow.
     const Vec2 a = azimuth_vector(set.azimuth_deg);
     for (int j = 0; j < static_cast<int>(m.joints.size()); ++j) {
@@ -282,7 +220,8 @@ FractureNetwork generate_fracture_network(const mesh::Mesh& m, const std::vector
       ++stats.candidates;
       if (gsl_rng_uniform(rng.get()) < set.seed_fraction) stats.seed_draws.push_back({j, 0.0, -1});
     }
-    for (SeedDraw& s : stats.seed_draws) s.target_length_m = draw_length(rng.get(), set.length);
+    const stochastic::ScalarDistribution length = length_distribution(set.length);
+    for (SeedDraw& s : stats.seed_draws) s.target_length_m = length.sample(rng.get());
     stats.seeds = static_cast<int>(stats.seed_draws.size());
     for (SeedDraw& s : stats.seed_draws) {
       if (network.fracture_of_joint[s.joint] >= 0) {

@@ -19,6 +19,7 @@
 //   - random numbers: GSL's mt19937, one generator per set seeded from the network seed
 //     and the set's name, so a network is the same on every machine, and adding, removing
 //     or reordering sets leaves the draws (seeds, target lengths) of the others unchanged.
+//     The lengths are drawn by the samplers of stochastic/scalar_distribution.hpp.
 //
 // Pure: no I/O, no global state; the same mesh, settings and seed give the same network.
 
@@ -116,7 +117,8 @@ double joint_azimuth_deg(const mesh::Mesh& mesh, int joint);
 /// Angle between two lines given by their azimuths [deg], in [0, 90].
 double azimuth_difference_deg(double a_deg, double b_deg);
 
-/// The seed of the GSL generator of the set named `set_name` for network seed `seed`.
+/// The seed of the GSL generator of the set named `set_name` for network seed `seed`
+/// (stochastic::stream_seed).
 unsigned long set_generator_seed(std::uint64_t seed, const std::string& set_name);
 
 }  // namespace hfdda::networks

@@ -1,6 +1,7 @@
 #include "simulation/model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
@@ -158,6 +159,64 @@ std::vector<std::vector<int>> joints_of_fractures(const mesh::Mesh& m, const io:
   return joints;
 }
 
+// --- Joint properties drawn joint by joint (seed 5.5) ------------------------
+
+/// The joint properties a case may give as distributions.
+enum JointProperty { kTensileStrength, kFrictionAngle, kHydraulicWidth, kJointProperties };
+
+/// A key given as a distribution that applies to joints: of `joints`, a fracture or a set.
+struct JointLaw {
+  std::string key;
+  stochastic::ScalarDistribution law;
+};
+
+/// Per property, the index into JointLaws of the key that set a joint's value last;
+/// -1: a number.
+using JointLawChoice = std::array<int, kJointProperties>;
+
+class JointLaws {
+ public:
+  /// Registers the law of `key`; returns its index, or -1 when the key holds a number.
+  int add(const std::string& key, const io::ParameterLaw& law) {
+    if (!law) return -1;
+    laws_.push_back({key, *law});
+    return static_cast<int>(laws_.size()) - 1;
+  }
+  /// The laws of the three properties of `prefix` ("joints", "fractures[2]").
+  JointLawChoice add_all(const std::string& prefix, const io::ParameterLaw& tensile_strength,
+                         const io::ParameterLaw& friction_angle, const io::ParameterLaw& hydraulic_width) {
+    return {add(prefix + ".tensile_strength", tensile_strength), add(prefix + ".friction_angle", friction_angle),
+            add(prefix + ".hydraulic_width", hydraulic_width)};
+  }
+  const JointLaw& operator[](int i) const { return laws_[static_cast<std::size_t>(i)]; }
+
+ private:
+  std::vector<JointLaw> laws_;
+};
+
+/// Which law each joint's properties come from, set as `joints` and the fractures apply.
+struct JointLawMap {
+  JointLaws laws;
+  std::vector<JointLawChoice> of_joint;
+};
+
+/// Draws the properties whose last key was a distribution, joint by joint in joint order.
+/// A joint whose T0 follows from a fracture toughness (seed eq. 4.13) draws no T0.
+void draw_joint_properties(mesh::Mesh& m, const JointLawMap& map, ParameterSampler& sampler) {
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    mesh::JointProperties& p = m.joints[j].properties;
+    const JointLawChoice& choice = map.of_joint[j];
+    const auto draw = [&](int property) {
+      const JointLaw& l = map.laws[choice[property]];
+      return sampler.draw(l.key, l.law, "joint");
+    };
+    if (choice[kTensileStrength] >= 0 && !p.fracture_toughness_Pa_sqrt_m)
+      p.tensile_strength_Pa = draw(kTensileStrength);
+    if (choice[kFrictionAngle] >= 0) p.friction_angle_rad = draw(kFrictionAngle) * std::numbers::pi / 180.0;
+    if (choice[kHydraulicWidth] >= 0) p.hydraulic_width_m = draw(kHydraulicWidth);
+  }
+}
+
 /// What a fracture sets on its joints; unset values leave the joint's as they are.
 struct JointOverrides {
   bool initially_open = false;
@@ -165,9 +224,10 @@ struct JointOverrides {
   std::optional<bool> breakable;
   std::optional<double> tensile_strength_Pa, fracture_toughness_Pa_sqrt_m, cohesion_Pa, friction_angle_deg,
       hydraulic_width_m, pressure_Pa;
+  JointLawChoice laws{-1, -1, -1};  ///< of the values above given as distributions
 };
 
-void apply_overrides(mesh::JointProperties& p, const JointOverrides& o) {
+void apply_overrides(mesh::JointProperties& p, JointLawChoice& choice, const JointOverrides& o) {
   p.initially_open = p.initially_open || o.initially_open;
   p.natural = p.natural || o.natural;
   if (o.breakable) p.breakable = *o.breakable;
@@ -175,40 +235,55 @@ void apply_overrides(mesh::JointProperties& p, const JointOverrides& o) {
   if (o.tensile_strength_Pa) {
     p.tensile_strength_Pa = *o.tensile_strength_Pa;
     p.fracture_toughness_Pa_sqrt_m.reset();
+    choice[kTensileStrength] = o.laws[kTensileStrength];
   }
   if (o.fracture_toughness_Pa_sqrt_m) p.fracture_toughness_Pa_sqrt_m = o.fracture_toughness_Pa_sqrt_m;
   if (o.cohesion_Pa) p.cohesion_Pa = *o.cohesion_Pa;
-  if (o.friction_angle_deg) p.friction_angle_rad = *o.friction_angle_deg * std::numbers::pi / 180.0;
-  if (o.hydraulic_width_m) p.hydraulic_width_m = *o.hydraulic_width_m;
+  if (o.friction_angle_deg) {
+    p.friction_angle_rad = *o.friction_angle_deg * std::numbers::pi / 180.0;
+    choice[kFrictionAngle] = o.laws[kFrictionAngle];
+  }
+  if (o.hydraulic_width_m) {
+    p.hydraulic_width_m = *o.hydraulic_width_m;
+    choice[kHydraulicWidth] = o.laws[kHydraulicWidth];
+  }
   if (o.pressure_Pa) p.prescribed_pressure_Pa = *o.pressure_Pa;
 }
 
-JointOverrides overrides_of(const io::FractureConfig& fr) {
-  return {fr.initially_open,      fr.natural,        fr.breakable,          fr.tensile_strength_Pa,
-          fr.fracture_toughness_Pa_sqrt_m, fr.cohesion_Pa, fr.friction_angle_deg, fr.hydraulic_width_m,
-          fr.pressure_Pa};
+JointOverrides overrides_of(const io::FractureConfig& fr, const std::string& key, JointLaws& laws) {
+  return {fr.initially_open,
+          fr.natural,
+          fr.breakable,
+          fr.tensile_strength_Pa,
+          fr.fracture_toughness_Pa_sqrt_m,
+          fr.cohesion_Pa,
+          fr.friction_angle_deg,
+          fr.hydraulic_width_m,
+          fr.pressure_Pa,
+          laws.add_all(key, fr.tensile_strength_law, fr.friction_angle_law, fr.hydraulic_width_law)};
 }
 
 /// A generated fracture is a natural fracture with its set's values (seed Table 5.3).
-JointOverrides overrides_of(const io::FractureSetConfig& set) {
+JointOverrides overrides_of(const io::FractureSetConfig& set, const std::string& key, JointLaws& laws) {
   JointOverrides o;
   o.natural = true;
   o.tensile_strength_Pa = set.tensile_strength_Pa;
   o.cohesion_Pa = set.cohesion_Pa;
   o.friction_angle_deg = set.friction_angle_deg;
   o.hydraulic_width_m = set.hydraulic_width_m;
+  o.laws = laws.add_all(key, set.tensile_strength_law, set.friction_angle_law, set.hydraulic_width_law);
   return o;
 }
 
 /// Joints along each fracture take its overrides; a fracture must be made of joints.
-std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c) {
+std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c, JointLawMap& law_map) {
   std::vector<int> fracture_of_joint(m.joints.size(), -1);
   const std::vector<std::vector<int>> joints = joints_of_fractures(m, c);
   for (std::size_t f = 0; f < c.fractures.size(); ++f) {
-    const JointOverrides overrides = overrides_of(c.fractures[f]);
+    const JointOverrides overrides = overrides_of(c.fractures[f], "fractures[" + std::to_string(f) + "]", law_map.laws);
     for (int j : joints[f]) {
       fracture_of_joint[j] = static_cast<int>(f);
-      apply_overrides(m.joints[j].properties, overrides);
+      apply_overrides(m.joints[j].properties, law_map.of_joint[j], overrides);
     }
   }
   return fracture_of_joint;
@@ -218,7 +293,7 @@ std::vector<int> apply_fractures(mesh::Mesh& m, const io::CaseConfig& c) {
 /// sets' values applied to its joints; appended to `fractures` and `fracture_of_joint`.
 networks::FractureNetwork apply_fracture_sets(mesh::Mesh& m, const io::CaseConfig& c,
                                               std::vector<ModelFracture>& fractures,
-                                              std::vector<int>& fracture_of_joint) {
+                                              std::vector<int>& fracture_of_joint, JointLawMap& law_map) {
   if (c.fracture_sets.empty()) return {};
   if (c.mesh.kind != io::MeshKind::delaunay)  // refused by the case checks already
     throw InputError(c.file, c.fracture_sets.front().line, "fracture_sets", "needs mesh.type: delaunay");
@@ -231,14 +306,16 @@ networks::FractureNetwork apply_fracture_sets(mesh::Mesh& m, const io::CaseConfi
   } catch (const ModelError& e) {
     throw InputError(c.file, c.fracture_sets.front().line, "fracture_sets", e.what());
   }
+  std::vector<JointOverrides> set_overrides;
+  for (std::size_t s = 0; s < c.fracture_sets.size(); ++s)
+    set_overrides.push_back(overrides_of(c.fracture_sets[s], "fracture_sets[" + std::to_string(s) + "]", law_map.laws));
   const int first = static_cast<int>(fractures.size());
   for (std::size_t n = 0; n < network.fractures.size(); ++n) {
     const networks::GeneratedFracture& g = network.fractures[n];
     fractures.push_back({g.name, -1, g.set});
-    const JointOverrides overrides = overrides_of(c.fracture_sets[g.set]);
     for (int j : g.joints) {
       fracture_of_joint[j] = first + static_cast<int>(n);
-      apply_overrides(m.joints[j].properties, overrides);
+      apply_overrides(m.joints[j].properties, law_map.of_joint[j], set_overrides[g.set]);
     }
   }
   return network;
@@ -326,6 +403,37 @@ void build_flow_network(Model& model, const io::CaseConfig& c) {
   model.coupling = std::make_unique<coupling::HydroMechanicalCoupling>(*model.flow, jacobian);
 }
 
+/// The materials of the block system: one per zone of the case, then, for each block of a
+/// zone whose Young's modulus or Poisson's ratio is a distribution, one of its own with
+/// the values drawn for it (seed 5.5: the rock blocks' E and nu are triangular laws),
+/// blocks in order. Points such blocks at their material; `zone_of_material` gets the
+/// zone of every material.
+std::vector<dda::Material> block_materials(mesh::Mesh& m, const io::CaseConfig& c, ParameterSampler& sampler,
+                                          std::vector<int>& zone_of_material) {
+  std::vector<dda::Material> materials;
+  zone_of_material.clear();
+  for (std::size_t z = 0; z < c.materials.size(); ++z) {
+    const io::MaterialConfig& mc = c.materials[z];
+    materials.push_back({mc.youngs_modulus_Pa, mc.poissons_ratio, mc.density_kg_m3});
+    zone_of_material.push_back(static_cast<int>(z));
+  }
+  for (mesh::Block& block : m.blocks) {
+    const int z = block.material;
+    const io::MaterialConfig& mc = c.materials[static_cast<std::size_t>(z)];
+    if (!mc.youngs_modulus_law && !mc.poissons_ratio_law) continue;
+    const std::string zone = "materials[" + std::to_string(z) + "]";
+    dda::Material own = materials[static_cast<std::size_t>(z)];
+    if (mc.youngs_modulus_law)
+      own.youngs_modulus_Pa = sampler.draw(zone + ".youngs_modulus", *mc.youngs_modulus_law, "block");
+    if (mc.poissons_ratio_law)
+      own.poissons_ratio = sampler.draw(zone + ".poissons_ratio", *mc.poissons_ratio_law, "block");
+    block.material = static_cast<int>(materials.size());
+    materials.push_back(own);
+    zone_of_material.push_back(z);
+  }
+  return materials;
+}
+
 }  // namespace
 
 mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
@@ -383,20 +491,32 @@ std::vector<networks::FractureSetSettings> fracture_set_settings(const io::CaseC
   return sets;
 }
 
-FracturedMesh build_fractured_mesh(const io::CaseConfig& c) {
+FracturedMesh build_fractured_mesh(const io::CaseConfig& c, ParameterSampler& sampler) {
   FracturedMesh out;
   out.mesh = build_case_mesh(c);
   assign_materials(out.mesh, c);
-  out.fracture_of_joint = apply_fractures(out.mesh, c);
+  // Every joint starts with the values of `joints`; fractures, then sets, override them.
+  JointLawMap law_map;
+  law_map.of_joint.assign(out.mesh.joints.size(),
+                          law_map.laws.add_all("joints", c.joints.tensile_strength_law, c.joints.friction_angle_law,
+                                               c.joints.hydraulic_width_law));
+  out.fracture_of_joint = apply_fractures(out.mesh, c, law_map);
   for (std::size_t f = 0; f < c.fractures.size(); ++f)
     out.fractures.push_back({c.fractures[f].name, static_cast<int>(f), -1});
-  out.network = apply_fracture_sets(out.mesh, c, out.fractures, out.fracture_of_joint);
+  out.network = apply_fracture_sets(out.mesh, c, out.fractures, out.fracture_of_joint, law_map);
+  draw_joint_properties(out.mesh, law_map, sampler);
   return out;
+}
+
+FracturedMesh build_fractured_mesh(const io::CaseConfig& c) {
+  ParameterSampler sampler(static_cast<std::uint64_t>(c.random_seed));
+  return build_fractured_mesh(c, sampler);
 }
 
 dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   double max_modulus = 0.0;
-  for (const auto& m : c.materials) max_modulus = std::max(max_modulus, m.youngs_modulus_Pa);
+  for (const auto& m : c.materials)
+    max_modulus = std::max(max_modulus, m.youngs_modulus_law ? m.youngs_modulus_law->highest() : m.youngs_modulus_Pa);
   dda::MechanicsSettings s;
   s.augmented_lagrangian = c.contact.method == io::ContactMethod::augmented_lagrangian;
   s.two_tier_contacts = c.contact.two_tier;
@@ -420,18 +540,20 @@ fracture::FractureRules fracture_rules(const io::CaseConfig& c) {
   return r;
 }
 
-Model build_model(const io::CaseConfig& c) {
+Model build_model(const io::CaseConfig& case_config) {
   const auto start = std::chrono::steady_clock::now();
   Model model;
-  model.config = c;
-  FracturedMesh fractured = build_fractured_mesh(c);
+  ParameterSampler sampler(static_cast<std::uint64_t>(case_config.random_seed));
+  model.config = draw_run_parameters(case_config, sampler);
+  const io::CaseConfig& c = model.config;
+  FracturedMesh fractured = build_fractured_mesh(c, sampler);
   mesh::Mesh& m = fractured.mesh;
   model.fractures = std::move(fractured.fractures);
   model.fracture_of_joint = std::move(fractured.fracture_of_joint);
   model.network = std::move(fractured.network);
 
-  std::vector<dda::Material> materials;
-  for (const auto& mc : c.materials) materials.push_back({mc.youngs_modulus_Pa, mc.poissons_ratio, mc.density_kg_m3});
+  std::vector<dda::Material> materials = block_materials(m, c, sampler, model.zone_of_material);
+  model.parameter_draws = sampler.draws();
   model.system = std::make_unique<dda::BlockSystem>(m, std::move(materials), mechanics_settings(c));
   dda::BlockSystem& system = *model.system;
 

@@ -19,6 +19,7 @@
 #include "mesh/mesh.hpp"
 #include "networks/fracture_network_generator.hpp"
 #include "simulation/load_ramp.hpp"
+#include "simulation/parameter_sampling.hpp"
 
 namespace hfdda::simulation {
 
@@ -40,11 +41,17 @@ struct FracturedMesh {
 };
 
 struct Model {
+  /// The case as run: the keys drawn once per run hold their draws (parameter_sampling.hpp).
   io::CaseConfig config;
   std::unique_ptr<dda::BlockSystem> system;
   std::vector<ModelFracture> fractures;  ///< config.fractures in order, then the generated ones
   std::vector<int> fracture_of_joint;    ///< index into fractures, -1 if none
   networks::FractureNetwork network;     ///< the generated fractures (none without fracture_sets)
+  /// What the keys given as distributions drew (empty without any), for summary.json.
+  std::vector<ParameterDraw> parameter_draws;
+  /// Per material of the block system, its zone in config.materials: a zone whose
+  /// Young's modulus or Poisson's ratio is drawn block by block has a material per block.
+  std::vector<int> zone_of_material;
   int mesh_seconds_ms = 0;
   // Flow network, when the case has a `fluid` section (fractures = mesh joints).
   std::unique_ptr<fluid::FlowNetwork> flow;
@@ -59,21 +66,27 @@ struct Model {
   std::unique_ptr<LoadRamp> ramp;
 };
 
-/// Builds the mesh and the block system of a case. Throws InputError.
+/// Builds the mesh and the block system of a case, drawing the keys given as
+/// distributions from its `random_seed`. Throws InputError.
 Model build_model(const io::CaseConfig& config);
 
 /// The mesh of a case alone (used by build_model, tests and benchmarks).
 mesh::Mesh build_case_mesh(const io::CaseConfig& config);
 
 /// The mesh with materials and fractures (the case's lines, then its generated network),
-/// without the block system: what `hfdda network` writes. Throws InputError.
+/// without the block system: what `hfdda network` writes. The joint properties given as
+/// distributions are drawn joint by joint with `sampler`. Throws InputError.
+FracturedMesh build_fractured_mesh(const io::CaseConfig& config, ParameterSampler& sampler);
+/// Same, drawing from the case's `random_seed`.
 FracturedMesh build_fractured_mesh(const io::CaseConfig& config);
 
 /// The generator settings of the case's fracture sets (seed 5.3).
 std::vector<networks::FractureSetSettings> fracture_set_settings(const io::CaseConfig& config);
 
 /// Mechanics settings of a case: spring constants are factors times the largest
-/// Young's modulus of its materials (seed Table 3.1: k = 100 E).
+/// Young's modulus of its materials (seed Table 3.1: k = 100 E); for a modulus given as
+/// a distribution, the largest value it can take, so that every run of a case has the
+/// same springs (seed 5.5 keeps its numerical constants fixed across realisations).
 dda::MechanicsSettings mechanics_settings(const io::CaseConfig& config);
 
 /// The failure rules of seed 2.3 a case sets (numerics section). Rule (i), failure only

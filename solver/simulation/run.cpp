@@ -45,7 +45,7 @@ struct OutputSeries {
     if (!vtu) return;
     const std::string blocks = "vtu/blocks_" + step_tag(step) + ".vtu";
     const std::string joints = "vtu/joints_" + step_tag(step) + ".vtu";
-    io::write_blocks_vtu(dir + "/" + blocks, block_frame(system));
+    io::write_blocks_vtu(dir + "/" + blocks, block_frame(system, model.zone_of_material));
     io::write_joints_vtu(dir + "/" + joints, rows);
     blocks_pvd.add(time_s, blocks);
     joints_pvd.add(time_s, joints);
@@ -86,6 +86,20 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
                              "open_extent_m", "invaded_extent_m"}) {
       const std::vector<double> series = r.record.series(name);
       fr[name] = {{"final", series.back()}, {"max", *std::max_element(series.begin(), series.end())}};
+    }
+  }
+  if (!model.parameter_draws.empty()) {
+    // The keys given as distributions: what this run drew, reproducible from random_seed.
+    j["random_seed"] = model.config.random_seed;
+    nlohmann::json& drawn = j["sampled_parameters"];
+    drawn = nlohmann::json::array();
+    for (const ParameterDraw& d : model.parameter_draws) {
+      nlohmann::json entry{{"key", d.key}, {"distribution", d.law}, {"per", d.per}, {"count", d.count}};
+      if (d.per == "run")
+        entry["value"] = d.min;
+      else
+        entry.update({{"min", d.min}, {"mean", d.mean}, {"max", d.max}});
+      drawn.push_back(entry);
     }
   }
   if (const fluid::FlowNetwork* flow = model.flow.get()) {

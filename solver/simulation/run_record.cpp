@@ -115,6 +115,12 @@ std::vector<OutputColumn> make_fixed_columns() {
        "fallbacks used after the flow Newton stalled: pseudo-transient continuation, restarts with the dry nodes "
        "at their neighbours' pressure, continuation in the step's inflows",
        [](const StepContext& c) { return double(c.stats.flow_newton_restarts); }},
+      {"flow_krylov_iterations", "-", "GMRES iterations of the flow Newton (numerics.flow_jacobian: krylov; 0 otherwise)",
+       [](const StepContext& c) { return double(c.stats.flow_krylov_iterations); }},
+      {"flow_inexact_linear_solves", "-",
+       "GMRES solves that stopped at their iteration limit before their tolerance; Newton used them as inexact "
+       "steps, its own convergence test being on the mass residual (krylov only)",
+       [](const StepContext& c) { return double(c.stats.flow_inexact_linear_solves); }},
       {"flow_max_residual", "-", "largest relative mass residual of a flow solve",
        [](const StepContext& c) { return c.stats.max_flow_residual; }},
       {"wetted_joints", "-", "fluid-filled joints (0 without a flow network)",

@@ -4,7 +4,7 @@
 
 namespace hfdda::simulation {
 
-io::BlockFrame block_frame(const dda::BlockSystem& s) {
+io::BlockFrame block_frame(const dda::BlockSystem& s, const std::vector<int>& zone_of_material) {
   io::BlockFrame f;
   f.corner_offsets.push_back(0);
   for (int b = 0; b < s.n_blocks(); ++b) {
@@ -14,7 +14,8 @@ io::BlockFrame block_frame(const dda::BlockSystem& s) {
     }
     f.corner_offsets.push_back(static_cast<int>(f.corners.size()));
     f.stress.push_back(s.stress(b));
-    f.material.push_back(s.block_material()[b]);
+    const int material = s.block_material()[b];
+    f.material.push_back(zone_of_material.empty() ? material : zone_of_material[static_cast<std::size_t>(material)]);
   }
   return f;
 }

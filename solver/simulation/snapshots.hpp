@@ -9,7 +9,9 @@
 
 namespace hfdda::simulation {
 
-io::BlockFrame block_frame(const dda::BlockSystem& system);
+/// The blocks' corners, displacements, stresses and materials; with `zone_of_material`
+/// (Model::zone_of_material), the material written is the zone of the case.
+io::BlockFrame block_frame(const dda::BlockSystem& system, const std::vector<int>& zone_of_material = {});
 /// One row per joint; with a flow network, "fluid" marks the joints it has wetted,
 /// without one the joints with a prescribed pressure.
 std::vector<io::JointRow> joint_rows(const dda::BlockSystem& system, const fluid::FlowNetwork* flow = nullptr);
