@@ -2,6 +2,8 @@
 
 #include "io/case_schema.hpp"
 
+#include "core/number_text.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cctype>
@@ -14,18 +16,7 @@ namespace hfdda::io::schema {
 // ---------------------------------------------------------------------------
 // Text helpers
 
-std::string format_number(double v) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  std::string text(buffer, result.ptr);
-  const auto e = text.find('e');
-  if (e == std::string::npos) return text;
-  std::string exponent = text.substr(e + 1);
-  const bool negative = exponent.front() == '-';
-  if (exponent.front() == '+' || exponent.front() == '-') exponent.erase(0, 1);
-  exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
-  return text.substr(0, e) + "e" + (negative ? "-" : "") + exponent;
-}
+std::string format_number(double v) { return number_text(v); }
 
 std::string format_point(const Vec2& p) {
   // Appended piece by piece: `"[" + std::string` trips a false -Wrestrict in GCC 12.

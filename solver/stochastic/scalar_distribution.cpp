@@ -2,6 +2,8 @@
 
 #include "stochastic/scalar_distribution.hpp"
 
+#include "core/number_text.hpp"
+
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_randist.h>
 
@@ -20,19 +22,6 @@ namespace {
 /// probability the normal CDF cannot resolve in double precision (Q(38) underflows).
 constexpr double kMaxTruncationDeviations = 30.0;
 
-/// Shortest text that reads back to v, with YAML-style exponents ("5e6", "1e-4").
-std::string number_text(double v) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  std::string text(buffer, result.ptr);
-  const auto e = text.find('e');
-  if (e == std::string::npos) return text;
-  std::string exponent = text.substr(e + 1);
-  const bool negative = exponent.front() == '-';
-  if (exponent.front() == '+' || exponent.front() == '-') exponent.erase(0, 1);
-  exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
-  return text.substr(0, e) + "e" + (negative ? "-" : "") + exponent;
-}
 
 bool has_bounds(DistributionKind k) { return k != DistributionKind::constant && k != DistributionKind::lognormal; }
 

@@ -8,6 +8,8 @@
 #include <gsl/gsl_rng.h>
 #include <gtest/gtest.h>
 
+#include "statistics_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -58,20 +60,8 @@ FractureSetSettings uniform_set(const std::string& name, double azimuth_deg, dou
   return s;
 }
 
-/// Kolmogorov-Smirnov statistic of a sample against a CDF.
-double ks_statistic(std::vector<double> sample, const std::function<double(double)>& cdf) {
-  std::sort(sample.begin(), sample.end());
-  const double n = static_cast<double>(sample.size());
-  double d = 0.0;
-  for (std::size_t i = 0; i < sample.size(); ++i) {
-    const double f = cdf(sample[i]);
-    d = std::max({d, (static_cast<double>(i) + 1.0) / n - f, f - static_cast<double>(i) / n});
-  }
-  return d;
-}
-
-/// Critical KS distance at significance 1e-3 (asymptotic: K = 1.949).
-double ks_critical(std::size_t n) { return 1.949 / std::sqrt(static_cast<double>(n)); }
+using test::ks_critical;
+using test::ks_statistic;
 
 // The CDFs of the four laws, written from their definitions (not the generator's).
 double uniform_cdf(double x, double a, double b) { return std::clamp((x - a) / (b - a), 0.0, 1.0); }
