@@ -50,22 +50,29 @@ void check_number_or_map(const FileReader& r, const YAML::Node& node, const std:
 
 KeyDoc sampled_doc(Doc d, SamplingScope scope, std::string default_text, std::string allowed);
 
+/// Reads a number in `range` into `value` (no law), or a distribution whose values all lie
+/// in `range` into `law` with its central value in `value`.
+template <class Law>
+void read_number_or_law(FileReader& r, const YAML::Node& n, const std::string& key, const Range& range,
+                        double& value, Law& law) {
+  check_number_or_map(r, n, key);
+  if (n.IsMap()) {
+    const stochastic::ScalarDistribution distribution = read_distribution(r, n, key, range);
+    value = distribution.central_value();
+    law = distribution;
+    return;
+  }
+  value = read_number(r, n, key);
+  check_range(r, n, key, range, value);
+  law.reset();
+}
+
 /// A number in `range`, or a distribution whose values all lie in `range`.
 template <class T>
 Field<T> sampled_number(Doc d, double T::*member, ParameterLaw T::*law, Range range, SamplingScope scope,
                         std::string also = "") {
   auto read = [member, law, range](FileReader& r, const YAML::Node& n, const std::string& key, T& out) {
-    check_number_or_map(r, n, key);
-    if (n.IsMap()) {
-      const stochastic::ScalarDistribution distribution = read_distribution(r, n, key, range);
-      out.*member = distribution.central_value();
-      out.*law = distribution;
-      return;
-    }
-    const double value = read_number(r, n, key);
-    check_range(r, n, key, range, value);
-    out.*member = value;
-    (out.*law).reset();
+    read_number_or_law(r, n, key, range, out.*member, out.*law);
   };
   const std::string allowed = also.empty() ? range.text() : range.text() + ", " + also;
   return {sampled_doc(std::move(d), scope, format_number(T{}.*member), allowed), read};
@@ -81,17 +88,9 @@ Field<T> optional_sampled_number(Doc d, std::optional<double> T::*member, Parame
       (out.*law).reset();
       return;
     }
-    check_number_or_map(r, n, key);
-    if (n.IsMap()) {
-      const stochastic::ScalarDistribution distribution = read_distribution(r, n, key, range);
-      out.*member = distribution.central_value();
-      out.*law = distribution;
-      return;
-    }
-    const double value = read_number(r, n, key);
-    check_range(r, n, key, range, value);
+    double value = 0.0;
+    read_number_or_law(r, n, key, range, value, out.*law);
     out.*member = value;
-    (out.*law).reset();
   };
   return {sampled_doc(std::move(d), scope, std::move(fallback), range.text()), read};
 }
