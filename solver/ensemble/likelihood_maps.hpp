@@ -8,6 +8,7 @@
 // maps byte for byte.
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,7 +42,8 @@ struct MapGrid {
 };
 
 /// The cells whose closed square the segment a-b meets, sorted and without repeats. A
-/// segment along a grid line meets the cells on both sides of it.
+/// segment along a grid line meets the cells on both sides of it; parts outside the grid
+/// meet nothing. The test is exact up to the rounding of the cell corners.
 std::vector<int> cells_crossed(const MapGrid& grid, Vec2 a, Vec2 b);
 
 /// What one realisation looked like at one map time: sorted ids of open joints and of
@@ -64,15 +66,17 @@ class LikelihoodAccumulator {
   /// joints = 0: grid maps only (realisations on different meshes).
   LikelihoodAccumulator(std::vector<double> map_times_s, int joints, MapGrid grid);
 
-  /// Adds one realisation. Throws std::invalid_argument for an id out of range or more
-  /// snapshots than map times.
+  /// Adds one realisation. Throws std::invalid_argument for an id out of range, ids not
+  /// sorted or repeated, more snapshots than map times, or an index already added; a
+  /// rejected realisation changes no count.
   void add(const RealisationMaps& realisation);
 
   const std::vector<double>& map_times_s() const { return times_; }
   const MapGrid& grid() const { return grid_; }
   int joints() const { return joints_; }
   /// Realisations that reached map time t (the denominator of every fraction at t).
-  long realisations_at(int t) const { return reached_[t]; }
+  /// The getters throw std::out_of_range for a time, joint or cell out of range.
+  long realisations_at(int t) const;
   long open_joint_count(int t, int joint) const;
   long wet_joint_count(int t, int joint) const;
   long open_cell_count(int t, int cell) const;
@@ -83,14 +87,16 @@ class LikelihoodAccumulator {
   int joints_;
   MapGrid grid_;
   std::vector<long> reached_;
+  std::set<long> indices_;  ///< of the realisations added, to refuse one added twice
   std::vector<std::vector<long>> open_joint_, wet_joint_, open_cell_, wet_cell_;  ///< [t][id]
 };
 
 /// Convergence of the grid map at time index t (issue: "the largest change of the grid
 /// map between the first N/2 and all N realisations, against N"): realisations sorted by
-/// index; for each N from 2 to their number, max over cells and over the open and wet maps
-/// of |fraction over the first floor(N/2) - fraction over the first N|, counting only the
-/// realisations that reached t.
+/// index; for each N from 2 to their number, the max over cells of |fraction over the
+/// first floor(N/2) - fraction over the first N|, for the open and for the wet map,
+/// counting only the realisations that reached t (empty when fewer than 2 did).
+/// Throws std::invalid_argument for a cell id out of range or an index given twice.
 struct ConvergencePoint {
   long n = 0;
   double max_change_open = 0.0;
@@ -115,7 +121,9 @@ struct JointSegment {
 ///    likelihood_grid.pvd listing them with their times (ParaView);
 ///  - likelihood_convergence.csv: time_s, n, max_change_open, max_change_wet.
 /// Numbers are written with the shortest text that reads back exactly (core/number_text),
-/// so equal counts give equal files. `segments` may be empty (grid maps only).
+/// so equal counts give equal files. `segments` may be empty (grid maps only: the joint
+/// files then have no rows or cells); otherwise it has one segment per joint.
+/// convergence_per_time[t] belongs to map time t and may stop before the last time.
 void write_likelihood_maps(const std::string& dir, const LikelihoodAccumulator& maps,
                            const std::vector<JointSegment>& segments,
                            const std::vector<std::vector<ConvergencePoint>>& convergence_per_time);
