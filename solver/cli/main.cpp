@@ -4,6 +4,8 @@
 //   hfdda plot DIR [--times ...] [--out ...]   figures of a run directory (hfdda_plot.py)
 //   hfdda network CASE.yaml --out DIR [--force] [--no-figure]
 //                                              the case's generated fracture network
+//   [mpirun -n N] hfdda ensemble CASE.yaml --out DIR [...]   Monte Carlo realisations and
+//   hfdda ensemble merge --out DIR SOURCES...                their likelihood maps
 // Exit codes: 0 success, 1 the run stopped (no convergence), 2 bad input or usage,
 // 3 stopped by SIGINT/SIGTERM after a step, with a checkpoint to restart from.
 
@@ -20,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_support.hpp"
+#include "cli/ensemble_command.hpp"
 #include "core/errors.hpp"
 #include "core/memory_policy.hpp"
 #include "dda/thread_policy.hpp"
@@ -36,6 +40,8 @@ constexpr const char* kUsage =
     "       hfdda check CASE.yaml\n"
     "       hfdda plot DIR [--times T1,T2,...] [--out FIGDIR]\n"
     "       hfdda network CASE.yaml --out DIR [--force] [--no-figure]\n"
+    "       [mpirun -n N] hfdda ensemble CASE.yaml --out DIR [--shard K/N] ...   (hfdda ensemble --help)\n"
+    "       hfdda ensemble merge --out DIR SOURCE_DIR...\n"
     "       hfdda --help | --version\n"
     "\n"
     "run    validates CASE.yaml, builds the mesh and runs the DDA time loop, writing\n"
@@ -55,17 +61,10 @@ constexpr const char* kUsage =
     "       fracture), DIR/network_fractures.csv, DIR/network_sets.csv, DIR/network.vtu (every\n"
     "       joint with its set) and DIR/network.png (--no-figure: none). A non-empty DIR is\n"
     "       refused; --force empties it first.\n"
+    "ensemble  the Monte Carlo realisations of the case's `ensemble` section and their likelihood\n"
+    "       maps (docs/ensembles.md); under mpirun the realisations are shared among the ranks.\n"
     "Case-file keys: docs/case_file.md. Exit: 0 ok, 1 run stopped, 2 bad input or unusable DIR,\n"
     "3 interrupted (checkpoint written).\n";
-
-volatile std::sig_atomic_t g_stop_requested = 0;
-
-/// First SIGINT/SIGTERM: finish the step, checkpoint, exit 3. A second one ends the
-/// process at once (the default action).
-extern "C" void on_stop_signal(int signal_number) {
-  g_stop_requested = 1;
-  std::signal(signal_number, SIG_DFL);
-}
 
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "hfdda: %s\n%s", message.c_str(), kUsage);
@@ -226,9 +225,8 @@ int run_command(int argc, char** argv, bool check_only) {
   hfdda::simulation::RunOptions options{out_dir, quiet, true};
   options.checkpoint_every = checkpoint_every;
   options.restart = restart;
-  options.stop_requested = [] { return g_stop_requested != 0; };
-  std::signal(SIGINT, on_stop_signal);
-  std::signal(SIGTERM, on_stop_signal);
+  options.stop_requested = hfdda::cli::stop_requested;
+  hfdda::cli::catch_stop_signals();
   const auto result = hfdda::simulation::run(model, options);
   if (result.interrupted) {
     std::fprintf(stderr, "hfdda: stopped after step %d (t = %g s) on a signal; checkpoint %s\n"
@@ -256,46 +254,10 @@ int run_command(int argc, char** argv, bool check_only) {
 
 }  // namespace
 
-/// Runs `script` (found next to this executable) with Debian's Python, the one that sees
-/// python3-matplotlib, and `arguments`; its exit code (2 when it cannot be run).
-int run_python_script(const char* command, const std::string& script_name, const std::vector<std::string>& arguments) {
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const std::filesystem::path script = exe.parent_path() / script_name;
-  if (ec || !std::filesystem::exists(script)) {
-    std::fprintf(stderr, "hfdda: %s: %s not found (it is copied next to the hfdda binary by the build)\n", command,
-                 script.c_str());
-    return 2;
-  }
-  const char* python = "/usr/bin/python3";
-  if (access(python, X_OK) != 0) {
-    std::fprintf(stderr, "hfdda: %s: %s not found; install Debian's python3 and python3-matplotlib\n", command,
-                 python);
-    return 2;
-  }
-  std::vector<std::string> args{python, script.string()};
-  args.insert(args.end(), arguments.begin(), arguments.end());
-  std::vector<char*> c_args;
-  for (std::string& a : args) c_args.push_back(a.data());
-  c_args.push_back(nullptr);
-  std::fflush(stdout);
-  std::fflush(stderr);
-  const pid_t pid = fork();
-  if (pid < 0) return 2;
-  if (pid == 0) {
-    execv(python, c_args.data());
-    _exit(127);
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 2;
-}
-
 /// `hfdda plot DIR [--times ...] [--out ...]`: runs hfdda_plot.py.
 int plot_command(int argc, char** argv) {
   if (argc < 3) return usage_error("plot: give the run directory");
-  return run_python_script("plot", "hfdda_plot.py", std::vector<std::string>(argv + 2, argv + argc));
+  return hfdda::cli::run_python_script("plot", "hfdda_plot.py", std::vector<std::string>(argv + 2, argv + argc));
 }
 
 /// Makes DIR ready for `hfdda network`: created if missing; refused if it is not a
@@ -370,7 +332,7 @@ int network_command(int argc, char** argv) {
   std::snprintf(domain, sizeof domain, "%.17g,%.17g,%.17g,%.17g", d.xmin, d.xmax, d.ymin, d.ymax);
   const std::string title = std::filesystem::path(case_file).filename().string() + ", network seed " +
                             std::to_string(config.network_seed);
-  const int code = run_python_script("network", "hfdda_network_plot.py", {out_dir, std::string("--domain=") + domain, "--title=" + title});
+  const int code = hfdda::cli::run_python_script("network", "hfdda_network_plot.py", {out_dir, std::string("--domain=") + domain, "--title=" + title});
   if (code != 0) std::fprintf(stderr, "hfdda: network: the figure was not drawn (the other files were written)\n");
   return code == 0 ? 0 : 2;
 }
@@ -391,6 +353,7 @@ int main(int argc, char** argv) {
     if (command == "check") return run_command(argc, argv, true);
     if (command == "plot") return plot_command(argc, argv);
     if (command == "network") return network_command(argc, argv);
+    if (command == "ensemble") return hfdda::cli::ensemble_command(argc, argv);
     return usage_error("unknown command '" + command + "'");
   } catch (const hfdda::InputError& e) {
     std::fprintf(stderr, "hfdda: input error: %s\n", e.what());

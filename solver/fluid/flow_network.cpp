@@ -129,15 +129,15 @@ void FlowNetwork::rebuild_trial_topology() {
   for (int i = 0; i < n; ++i) old_mass_[i] = point_mass_[trial_nodes_[i]];
   for (const auto& inj : injections_) {
     const int i = node_of_point_[inj.point];
-    const double seconds = std::max(0.0, t1 - std::max(t0, inj.start_time_s));
-    if (seconds <= 0.0) continue;
+    const double mass = inj.mass_injected_by(t1) - inj.mass_injected_by(t0);
+    if (mass <= 0.0) continue;
     if (i < 0) {
       std::ostringstream msg;
       msg << "injection at mesh point " << inj.point << " is not on a fluid-filled fracture at t = " << t0
           << " s: the injected fluid has nowhere to go";
       throw ModelError(msg.str());
     }
-    injected_[i] += inj.mass_rate_kg_s * seconds;
+    injected_[i] += mass;
   }
   const double cl = fluid_.leak_off_coefficient_m_sqrt_s;
   for (int k = 0; k < nf; ++k) {

@@ -41,6 +41,8 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -89,6 +91,14 @@ struct Injection {
   int point = -1;
   double mass_rate_kg_s = 0.0;
   double start_time_s = 0.0;
+  /// Injection stops once this mass has gone in (seed 5.5: 60 kg per metre).
+  double mass_limit_kg = std::numeric_limits<double>::infinity();
+
+  /// Mass per metre injected from time 0 to t: the rate from start_time on, up to the limit.
+  double mass_injected_by(double t_s) const {
+    const double seconds = std::max(0.0, t_s - start_time_s);
+    return std::min(mass_rate_kg_s * seconds, mass_limit_kg);
+  }
 };
 
 struct FlowSolveStatistics {

@@ -350,6 +350,21 @@ void check_min_widths(const CaseConfig& c, const MergedChecker& m) {
              format_number(NumericsConfig{}.min_width_tip_m) + ")");
 }
 
+void check_ensemble(const CaseConfig& c, const MergedChecker& m) {
+  if (!c.ensemble) return;
+  const EnsembleConfig& e = *c.ensemble;
+  if (c.load_ramp) m.fail("ensemble", "needs time stepping to time.end_time, not a load_ramp");
+  if (e.map_every_s > c.time.end_time_s)
+    m.fail(m.present("ensemble.map_every") ? "ensemble.map_every" : "time.end_time",
+           "the maps are taken every ensemble.map_every, which must be <= time.end_time (got map_every " +
+               format_number(e.map_every_s) + " s, end_time " + format_number(c.time.end_time_s) + " s)");
+  const Rect& out = c.domain.outer;
+  const double side = std::max(out.xmax - out.xmin, out.ymax - out.ymin);
+  if (e.grid_cell_m > side)
+    m.fail("ensemble.grid_cell", "must be at most the larger side of domain.outer (got " +
+                                     format_number(e.grid_cell_m) + " m, side " + format_number(side) + " m)");
+}
+
 }  // namespace
 
 const std::vector<CrossCheck>& cross_checks() {
@@ -411,7 +426,10 @@ const std::vector<CrossCheck>& cross_checks() {
        "differ from the names of `fractures`, `fracture_maps` and `breakable_patterns`; a set's `length.min` (or "
        "`length.median`) is at most the diagonal of `domain.outer`.",
        check_fracture_sets},
-      {"`random_seed` needs a key given as a distribution.", check_random_seed}};
+      {"`random_seed` needs a key given as a distribution.", check_random_seed},
+      {"`ensemble` needs time stepping (no `load_ramp`); `ensemble.map_every` <= `time.end_time`; "
+       "`ensemble.grid_cell` at most the larger side of `domain.outer`.",
+       check_ensemble}};
   return checks;
 }
 

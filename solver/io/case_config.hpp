@@ -184,6 +184,9 @@ struct InjectionConfig {
   double mass_rate_kg_s = 0.0;          ///< per metre of out-of-plane thickness
   ParameterLaw mass_rate_law;           ///< drawn once per run (seed 5.5)
   double start_time_s = 0.0;
+  /// Injection stops once this mass per metre has gone in (seed 5.5: 60 kg); the run goes
+  /// on shut in. Absent: no limit.
+  std::optional<double> mass_limit_kg;
   int line = 0;
 };
 
@@ -293,6 +296,20 @@ struct OutputConfig {
   bool vtu = true;
 };
 
+/// A Monte Carlo ensemble of the case (`hfdda ensemble`; seed 5.5, 5.6): how many
+/// realisations, the master seed of their random streams, which groups of parameters are
+/// drawn anew for each realisation (the others are drawn once and held), and the maps.
+struct EnsembleConfig {
+  int realisations = 10;
+  int master_seed = 1;
+  /// Groups drawn anew per realisation: network (fracture_sets), rock (materials, joints,
+  /// far_field), natural_fractures (fractures, fracture_sets properties), fluid (fluid,
+  /// injections). A group not listed is drawn once from the master seed and held.
+  std::vector<std::string> resample{"network", "rock", "natural_fractures", "fluid"};
+  double map_every_s = 900.0;   ///< likelihood maps every this much simulated time (seed: 15 min)
+  double grid_cell_m = 10.0;    ///< side of the grid-map cells (seed Figures 5.24-5.44: 10 m)
+};
+
 struct CaseConfig {
   std::string file;   ///< path of the (top) case file
   std::string mesh_file;  ///< file that set the `mesh` section (the top file or a base it extends)
@@ -325,6 +342,7 @@ struct CaseConfig {
   NumericsConfig numerics;
   TimeConfig time;
   OutputConfig output;
+  std::optional<EnsembleConfig> ensemble;  ///< read by `hfdda ensemble` only
 };
 
 /// Whether any key of the case is given as a distribution.

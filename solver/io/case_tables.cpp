@@ -318,7 +318,11 @@ const Table<InjectionConfig>& injection_table() {
                                &InjectionConfig::mass_rate_kg_s, &InjectionConfig::mass_rate_law,
                                positive_up_to(1e6), SamplingScope::realisation)),
        number({"start_time", "s", "", "time at which injection starts (then continues)"},
-              &InjectionConfig::start_time_s, zero_to(kMaxTime))}};
+              &InjectionConfig::start_time_s, zero_to(kMaxTime)),
+       optional_number({"mass_limit", "kg", "§5.5: injection stopped after 60 kg",
+                        "injection stops once this mass per metre of out-of-plane thickness has gone in; "
+                        "the run goes on shut in to time.end_time"},
+                       &InjectionConfig::mass_limit_kg, positive_up_to(1e12), "no limit")}};
   return table;
 }
 
@@ -491,6 +495,29 @@ const Table<TimeConfig>& time_table() {
   return table;
 }
 
+const Table<EnsembleConfig>& ensemble_table() {
+  static const Table<EnsembleConfig> table{
+      "`ensemble`",
+      "A Monte Carlo ensemble of the case, run by `hfdda ensemble` (docs/ensembles.md); "
+      "`hfdda run` ignores it.",
+      {integer({"realisations", "", "§5.5, §5.6: 50 realisations", "number of realisations"},
+               &EnsembleConfig::realisations, interval(1, false, 1000000, false)),
+       integer({"master_seed", "", "§5.5: \"all distributions were sampled using pre-defined seeds\"",
+                "seed of every random stream of the ensemble: realisation i draws from streams that "
+                "depend only on master_seed and i"},
+               &EnsembleConfig::master_seed, interval(0, false, 2147483647, false)),
+       choice_list({"resample", "", "§5.5: reservoir held constant, fluid varied",
+                    "groups drawn anew for every realisation; the others are drawn once and held: "
+                    "network (the fracture_sets network), rock (materials, joints, far_field), "
+                    "natural_fractures (properties of fractures and fracture_sets), fluid (fluid, injections)"},
+                   &EnsembleConfig::resample, {"network", "rock", "natural_fractures", "fluid"}),
+       number({"map_every", "s", "§5.5: maps every 15 min", "likelihood maps at every multiple of this time"},
+              &EnsembleConfig::map_every_s, positive_up_to(kMaxTime), "<= time.end_time"),
+       number({"grid_cell", "m", "Figures 5.24-5.44", "side of the square cells of the grid maps"},
+              &EnsembleConfig::grid_cell_m, positive_up_to(kMaxCoordinate), kWithinDomain)}};
+  return table;
+}
+
 const Table<OutputConfig>& output_table() {
   static const Table<OutputConfig> table{
       "`output`",
@@ -562,7 +589,10 @@ const Table<CaseConfig>& case_table() {
                &CaseConfig::numerics, &numerics_table),
        section({"time", "", "Table 3.1: time step", "time stepping"}, &CaseConfig::time,
                &time_table),
-       section({"output", "", "", "what is written"}, &CaseConfig::output, &output_table)}};
+       section({"output", "", "", "what is written"}, &CaseConfig::output, &output_table),
+       optional_section({"ensemble", "", "§5.5, §5.6: Monte Carlo realisations",
+                         "likelihood maps over realisations (`hfdda ensemble`)"},
+                        &CaseConfig::ensemble, &ensemble_table)}};
   return table;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <unordered_map>
 #include <numbers>
@@ -394,7 +395,8 @@ void build_flow_network(Model& model, const io::CaseConfig& c) {
   }
   for (std::size_t i = 0; i < c.injections.size(); ++i) {
     const int point = injection_point(m, c, i, filled_point);
-    model.flow->add_injection({point, c.injections[i].mass_rate_kg_s, c.injections[i].start_time_s});
+    model.flow->add_injection({point, c.injections[i].mass_rate_kg_s, c.injections[i].start_time_s,
+                               c.injections[i].mass_limit_kg.value_or(std::numeric_limits<double>::infinity())});
     model.injection_points.push_back(point);
   }
   for (const auto& probe : c.probes) model.probe_points.push_back(mesh::nearest_point(m, probe.at));
@@ -541,9 +543,13 @@ fracture::FractureRules fracture_rules(const io::CaseConfig& c) {
 }
 
 Model build_model(const io::CaseConfig& case_config) {
+  ParameterSampler sampler(static_cast<std::uint64_t>(case_config.random_seed));
+  return build_model(case_config, sampler);
+}
+
+Model build_model(const io::CaseConfig& case_config, ParameterSampler& sampler) {
   const auto start = std::chrono::steady_clock::now();
   Model model;
-  ParameterSampler sampler(static_cast<std::uint64_t>(case_config.random_seed));
   model.config = draw_run_parameters(case_config, sampler);
   const io::CaseConfig& c = model.config;
   FracturedMesh fractured = build_fractured_mesh(c, sampler);

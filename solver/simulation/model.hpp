@@ -69,6 +69,8 @@ struct Model {
 /// Builds the mesh and the block system of a case, drawing the keys given as
 /// distributions from its `random_seed`. Throws InputError.
 Model build_model(const io::CaseConfig& config);
+/// Same, drawing from `sampler` (an ensemble realisation's group seeds).
+Model build_model(const io::CaseConfig& config, ParameterSampler& sampler);
 
 /// The mesh of a case alone (used by build_model, tests and benchmarks).
 mesh::Mesh build_case_mesh(const io::CaseConfig& config);

@@ -3,8 +3,26 @@
 #include "simulation/parameter_sampling.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace hfdda::simulation {
+
+std::string parameter_group(const std::string& key) {
+  const auto starts = [&](const char* prefix) { return key.rfind(prefix, 0) == 0; };
+  if (starts("materials[") || starts("joints.") || starts("far_field.")) return "rock";
+  if (starts("fractures[") || starts("fracture_sets[")) return "natural_fractures";
+  if (starts("fluid.") || starts("injections[")) return "fluid";
+  throw std::invalid_argument("parameter_group: key '" + key + "' belongs to no group");
+}
+
+std::uint64_t ParameterSampler::seed_of(const std::string& key) const {
+  if (seed_of_group_.empty()) return random_seed_;
+  const std::string group = parameter_group(key);
+  const auto it = seed_of_group_.find(group);
+  if (it == seed_of_group_.end())
+    throw std::invalid_argument("ParameterSampler: no seed for group '" + group + "' of key '" + key + "'");
+  return it->second;
+}
 
 double ParameterSampler::draw(const std::string& key, const stochastic::ScalarDistribution& law,
                               const std::string& per) {
@@ -14,7 +32,7 @@ double ParameterSampler::draw(const std::string& key, const stochastic::ScalarDi
     summary.key = key;
     summary.law = law.text();
     summary.per = per;
-    keys_.push_back(KeyStream{stochastic::RandomStream(random_seed_, key), summary, 0.0});
+    keys_.push_back(KeyStream{stochastic::RandomStream(seed_of(key), key), summary, 0.0});
     it = index_.emplace(key, keys_.size() - 1).first;
   }
   KeyStream& k = keys_[it->second];

@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
 
 #include "core/errors.hpp"
 #include "io/output.hpp"
@@ -142,11 +144,12 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
 RunResult run(Model& model, const RunOptions& options) {
   const auto start = Clock::now();
   const auto& time = model.config.time;
-  std::filesystem::create_directories(options.output_dir);
+  const bool files = options.write_files;
+  if (files) std::filesystem::create_directories(options.output_dir);
   const std::vector<OutputColumn> columns = history_columns(model);
   std::vector<std::string> names;
   for (const OutputColumn& c : columns) names.push_back(c.name);
-  OutputSeries outputs(options.output_dir, options.write_vtu && model.config.output.vtu);
+  OutputSeries outputs(options.output_dir, files && options.write_vtu && model.config.output.vtu);
   const bool terminal = !options.quiet && isatty(fileno(stderr));
 
   RunResult result;
@@ -154,6 +157,7 @@ RunResult run(Model& model, const RunOptions& options) {
   double wall_before = 0.0;  // wall time of the parts of the run before a restart
   std::vector<std::vector<double>> kept_rows;
   if (options.restart) {
+    if (!files) throw std::invalid_argument("run: a restart needs the run's files");
     RunProgress p = read_checkpoint(checkpoint_path(options.output_dir), model);
     if (p.record.columns() != names)
       throw std::runtime_error("checkpoint in '" + options.output_dir + "': its history columns differ");
@@ -166,7 +170,8 @@ RunResult run(Model& model, const RunOptions& options) {
     outputs.blocks_pvd.restore(std::move(p.blocks_pvd));
     outputs.joints_pvd.restore(std::move(p.joints_pvd));
   }
-  io::HistoryCsv history(options.output_dir + "/history.csv", names, kept_rows);
+  std::optional<io::HistoryCsv> history;
+  if (files) history.emplace(options.output_dir + "/history.csv", names, kept_rows);
   auto checkpoint = [&] {
     RunProgress p{result.steps, result.time_s, wall_before + std::chrono::duration<double>(Clock::now() - start).count(),
                   result.totals, result.record, outputs.blocks_pvd.entries(), outputs.joints_pvd.entries()};
@@ -178,7 +183,7 @@ RunResult run(Model& model, const RunOptions& options) {
   const std::vector<char> edge_points =
       stop_at_edge ? inner_boundary_points(model.system->mesh(), model.config) : std::vector<char>{};
   const int n_steps = std::max(1, static_cast<int>(std::llround(time.end_time_s / time.dt_s)));
-  if (!options.restart) outputs.write(model, 0, 0.0, false);
+  if (files && !options.restart) outputs.write(model, 0, 0.0, false);
   for (int step = result.steps + 1; ramp ? ramp->has_next() : step <= n_steps; ++step) {
     const double t = step * time.dt_s;
     if (ramp) model.system->set_load_level(ramp->next_level());
@@ -207,10 +212,11 @@ RunResult run(Model& model, const RunOptions& options) {
     std::vector<double> row;
     row.reserve(columns.size());
     for (const OutputColumn& c : columns) row.push_back(c.value(context));
-    history.append(row);
+    if (history) history->append(row);
     result.record.append(std::move(row));
     const int every = model.config.output.every_steps;
-    if (last || (every > 0 && step % every == 0)) outputs.write(model, step, t, last);
+    if (files && (last || (every > 0 && step % every == 0))) outputs.write(model, step, t, last);
+    if (options.after_step) options.after_step(model, step, t);
     const int shown_steps = ramp ? step : n_steps;
     if (terminal)
       std::fprintf(stderr, "\rstep %d/%d  t = %.4g s  open-close %d  ALM %d  elapsed %.1f s   ", step, shown_steps, t,
@@ -221,19 +227,19 @@ RunResult run(Model& model, const RunOptions& options) {
     if (at_edge) break;
     if (last) continue;
     const bool stop = options.stop_requested && options.stop_requested();
-    if (stop || (options.checkpoint_every > 0 && step % options.checkpoint_every == 0)) checkpoint();
+    if (files && (stop || (options.checkpoint_every > 0 && step % options.checkpoint_every == 0))) checkpoint();
     if (stop) {
       result.interrupted = true;
-      result.message = "step " + std::to_string(step) + ": stopped on request; checkpoint written";
+      result.message = "step " + std::to_string(step) + ": stopped on request" + (files ? "; checkpoint written" : "");
       break;
     }
   }
   if (terminal) std::fprintf(stderr, "\n");
   result.completed = result.message.empty();
   if (result.completed && result.stop_reason.empty()) result.stop_reason = ramp ? "load_ramp" : "end_time";
-  if (!result.completed && !result.interrupted) outputs.write(model, result.steps, result.time_s, true);
+  if (files && !result.completed && !result.interrupted) outputs.write(model, result.steps, result.time_s, true);
   result.wall_seconds = wall_before + std::chrono::duration<double>(Clock::now() - start).count();
-  write_summary(model, options, result);
+  if (files) write_summary(model, options, result);
   return result;
 }
 

@@ -21,6 +21,11 @@ struct RunOptions {
   bool restart = false;
   /// Asked after every step; true: write a checkpoint and stop (RunResult::interrupted).
   std::function<bool()> stop_requested{};
+  /// false: nothing is written (no directory, history, joints, VTU, summary or
+  /// checkpoint); the rows stay in RunResult::record. An ensemble realisation runs so.
+  bool write_files = true;
+  /// Called after every completed step with the model at its end, the step and the time.
+  std::function<void(const Model&, int step, double time_s)> after_step{};
 };
 
 struct RunResult {

@@ -92,6 +92,24 @@ TEST(FlowShutIn, DelayedInjectionStartsOnTime) {
   EXPECT_GT(r.value(4, "wetted_joints"), r.value(1, "wetted_joints"));
 }
 
+TEST(FlowShutIn, InjectionStopsAtItsMassLimitInsideAStep) {
+  // 0.4 kg/s from t = 0 up to 0.5 kg (seed 5.5: injection stopped after 60 kg): 0.2 kg in
+  // each of the first two steps, the last 0.1 kg in the third (which ends at 1.5 s, past
+  // the 1.25 s the limit is reached at), nothing after; the run goes on shut in.
+  const simulation::RunResult result = run_case(
+      small_case("[{name: well, at: [0, 0], mass_rate: 0.4, start_time: 0, mass_limit: 0.5}]", 2.5), "limited");
+  ASSERT_TRUE(result.completed) << result.message;
+  const simulation::RunRecord& r = result.record;
+  ASSERT_EQ(r.rows(), 5u);
+  const double expected_injected[] = {0.2, 0.4, 0.5, 0.5, 0.5};
+  for (std::size_t row = 0; row < r.rows(); ++row) {
+    EXPECT_NEAR(r.value(row, "mass_injected_kg"), expected_injected[row], 1e-15) << "step " << row + 1;
+    EXPECT_LT(r.value(row, "mass_balance_error"), 1e-12) << "step " << row + 1;
+  }
+  // Shut in: the inlet pressure falls once the pump stops.
+  EXPECT_LT(r.value(4, "injection_pressure_Pa"), r.value(1, "injection_pressure_Pa"));
+}
+
 TEST(FlowShutIn, VanishingRateBehavesAsShutIn) {
   const simulation::RunResult result =
       run_case(small_case("[{name: well, at: [0, 0], mass_rate: 1.0e-300, start_time: 0}]", 1.5), "tiny");

@@ -491,6 +491,13 @@ VariantOutcome run_variant(const VariantSpec& spec, const CaseDefinition& def, c
     }
     r.config = io::load_case_file(case_path);
     if (def.validate) def.validate(*r.config, spec);
+    if (def.run) {
+      fs::create_directories(run_dir);
+      def.run(r, case_path, run_dir);
+      out.metrics = def.metrics(r);
+      write_files(out_dir, out.metrics.files);
+      return out;
+    }
     model = simulation::build_model(*r.config);
     r.built = true;
     const bool vtu = std::find(spec.vtu_tiers.begin(), spec.vtu_tiers.end(), tier) != spec.vtu_tiers.end();
@@ -521,7 +528,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
     else if (key == "--out") o.out_dir = argv[i + 1];
     else return std::nullopt;
   }
-  if (argc % 2 == 0 || o.case_dir.empty() || o.out_dir.empty() || (o.tier != "quick" && o.tier != "full"))
+  if (argc % 2 == 0 || o.case_dir.empty() || o.out_dir.empty() || (o.tier != "quick" && o.tier != "full" && o.tier != "ensemble"))
     return std::nullopt;
   return o;
 }
@@ -532,7 +539,7 @@ int run_harness(int argc, char** argv, const CaseDefinition& def) {
   const std::string program = fs::path(argv[0]).filename().string();
   const auto options = parse_options(argc, argv);
   if (!options) {
-    std::fprintf(stderr, "usage: %s --tier quick|full --case-dir DIR --out RESULT_DIR\n", program.c_str());
+    std::fprintf(stderr, "usage: %s --tier quick|full|ensemble --case-dir DIR --out RESULT_DIR\n", program.c_str());
     return 2;
   }
   const std::string &tier = options->tier, &out_dir = options->out_dir;

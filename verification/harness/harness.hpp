@@ -1,7 +1,7 @@
 #pragma once
 // The verification harness: one runner for every case folder (verification/README.md).
 //
-//   verify_<case> --tier quick|full --case-dir DIR --out RESULT_DIR
+//   verify_<case> --tier quick|full|ensemble --case-dir DIR --out RESULT_DIR
 //
 // reads DIR/study.yaml (variants, thresholds, checks, figures, notes, reference data),
 // builds and runs each variant of the tier through the library (build_model + run),
@@ -102,6 +102,11 @@ struct CaseDefinition {
   /// Optional: numbers that compare variants (added to a variant's or the study's
   /// Metrics), study-level JSON and files.
   std::function<void(StudyOutcome&)> study_metrics;
+  /// Optional: runs a variant in place of build_model + run (an ensemble of realisations,
+  /// verification/ensembles): given the case file to run and the run directory (created
+  /// empty), it sets VariantRun::completed and notes what failed. VariantRun::model stays
+  /// null; the metrics read what the run wrote.
+  std::function<void(VariantRun&, const std::string& case_path, const std::string& run_dir)> run{};
 };
 
 /// Defined by the case folder's metrics.cpp.
