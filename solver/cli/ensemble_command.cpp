@@ -14,6 +14,7 @@
 #include "dda/thread_policy.hpp"
 #include "ensemble/ensemble_run.hpp"
 #include "io/case_config.hpp"
+#include "simulation/run.hpp"
 
 namespace hfdda::cli {
 
@@ -22,6 +23,7 @@ namespace {
 constexpr const char* kEnsembleUsage =
     "usage: [mpirun -n N] hfdda ensemble CASE.yaml --out DIR [--shard K/N] [--force] [--quiet] [--threads N]\n"
     "                                   [--no-figures]\n"
+    "       hfdda ensemble CASE.yaml --realisation I --out DIR [--force] [--quiet]\n"
     "       hfdda ensemble merge --out DIR SOURCE_DIR... [--no-figures]\n"
     "\n"
     "Runs the realisations of the case's `ensemble` section (docs/ensembles.md), each written\n"
@@ -33,7 +35,9 @@ constexpr const char* kEnsembleUsage =
     "drops the realisations in flight and exits 3. --force empties DIR first.\n"
     "--shard K/N: only the realisations with index % N == K (K from 0), for job arrays;\n"
     "then `hfdda ensemble merge --out DIR SHARD_DIR...` writes the maps over all of them.\n"
-    "--threads N: threads per process (default: HFDDA_THREADS, else 1; keep 1 under mpirun).\n";
+    "--threads N: threads per process (default: HFDDA_THREADS, else 1; keep 1 under mpirun).\n"
+    "--realisation I: run realisation I alone, as `hfdda run` would, writing every output file\n"
+    "(history.csv, joints, VTU, summary.json) to DIR: to look into one that failed.\n";
 
 int usage(const std::string& message) {
   std::fprintf(stderr, "hfdda ensemble: %s\n%s", message.c_str(), kEnsembleUsage);
@@ -99,8 +103,35 @@ std::string empty_directory(const std::string& dir) {
   return "";
 }
 
+/// `--realisation I`: one realisation with the outputs of `hfdda run` (exit codes as run's).
+int run_one_realisation(const io::CaseConfig& config, long index, const std::string& out_dir, bool quiet) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(out_dir + "/summary.json", ec) || fs::exists(out_dir + "/history.csv", ec)) {
+    std::fprintf(stderr, "hfdda ensemble: '%s' holds a previous run; give --force to empty it first\n", out_dir.c_str());
+    return 2;
+  }
+  simulation::Model model = ensemble::build_realisation_model(config, index);
+  simulation::RunOptions options;
+  options.output_dir = out_dir;
+  options.quiet = quiet;
+  options.stop_requested = stop_requested;
+  catch_stop_signals();
+  const simulation::RunResult result = simulation::run(model, options);
+  if (result.interrupted) return 3;
+  if (!result.completed) {
+    std::fprintf(stderr, "hfdda ensemble: realisation %ld stopped at %s\noutputs up to t = %g s are in %s\n", index,
+                 result.message.c_str(), result.time_s, out_dir.c_str());
+    return 1;
+  }
+  if (!quiet) std::fprintf(stderr, "realisation %ld: %d steps in %.2f s; outputs in %s\n", index, result.steps,
+                           result.wall_seconds, out_dir.c_str());
+  return 0;
+}
+
 int run_ensemble(int argc, char** argv, const ProcessGroup& group) {
   std::string case_file, out_dir;
+  long only = -1;
   ensemble::Shard shard;
   bool force = false, quiet = false, figures = true;
   int threads = dda::threads_from_environment();
@@ -116,6 +147,11 @@ int run_ensemble(int argc, char** argv, const ProcessGroup& group) {
           std::stoi(value) < 1)
         return usage("--threads needs a whole number from 1 to 9999 (got '" + value + "')");
       threads = std::stoi(value);
+    } else if (arg == "--realisation" && i + 1 < argc) {
+      const std::string value = argv[++i];
+      if (value.empty() || value.size() > 9 || value.find_first_not_of("0123456789") != std::string::npos)
+        return usage("--realisation needs a whole number >= 0 (got '" + value + "')");
+      only = std::stol(value);
     } else if (arg == "--force") force = true;
     else if (arg == "--quiet" || arg == "-q") quiet = true;
     else if (arg == "--no-figures") figures = false;
@@ -131,6 +167,17 @@ int run_ensemble(int argc, char** argv, const ProcessGroup& group) {
   const io::CaseConfig config = io::load_case_file(case_file);
   if (!config.ensemble)
     throw InputError(case_file, 0, "ensemble", "hfdda ensemble needs an `ensemble` section (docs/case_file.md)");
+  if (only >= 0) {
+    if (group.size > 1) return usage("--realisation runs on one process, not under mpirun");
+    if (only >= config.ensemble->realisations)
+      return usage("--realisation " + std::to_string(only) + ": the ensemble has realisations 0 to " +
+                   std::to_string(config.ensemble->realisations - 1));
+    if (force) {
+      const std::string problem = empty_directory(out_dir);
+      if (!problem.empty()) return usage(problem);
+    }
+    return run_one_realisation(config, only, out_dir, quiet);
+  }
   const ensemble::EnsembleGeometry geometry = ensemble::ensemble_geometry(config);
   const ensemble::EnsembleManifest manifest = ensemble::make_manifest(config, geometry, shard);
 

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/fingerprint.hpp"
 #include "core/number_text.hpp"
 #include "io/output.hpp"
 
@@ -35,11 +36,9 @@ std::string read_text(const std::string& path) {
 }
 
 std::string hash_text(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ULL;
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return hex;
+  Fingerprint f;
+  f.add(text);
+  return f.hex();
 }
 
 json grid_json(const MapGrid& g) {

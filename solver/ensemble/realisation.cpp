@@ -4,9 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 
+#include "core/fingerprint.hpp"
 #include "simulation/model.hpp"
 #include "simulation/run.hpp"
 #include "stochastic/scalar_distribution.hpp"
@@ -19,19 +18,12 @@ bool resampled(const io::EnsembleConfig& e, const std::string& group) {
   return std::find(e.resample.begin(), e.resample.end(), group) != e.resample.end();
 }
 
-/// FNV-1a over the bytes of the joints' end points.
+/// Fingerprint of the joints' end points.
 MeshSignature mesh_signature(const mesh::Mesh& m) {
-  std::uint64_t h = 1469598103934665603ULL;
-  auto mix = [&h](double v) {
-    unsigned char bytes[sizeof v];
-    std::memcpy(bytes, &v, sizeof v);
-    for (unsigned char b : bytes) h = (h ^ b) * 1099511628211ULL;
-  };
+  Fingerprint f;
   for (const mesh::Joint& j : m.joints)
-    for (int point : {j.point_p, j.point_q}) mix(m.points[point].x()), mix(m.points[point].y());
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return {static_cast<int>(m.joints.size()), hex};
+    for (int point : {j.point_p, j.point_q}) f.add(m.points[point].x()), f.add(m.points[point].y());
+  return {static_cast<int>(m.joints.size()), f.hex()};
 }
 
 /// The case as realisation `seeds` runs it: its own network seed.
@@ -109,6 +101,13 @@ EnsembleGeometry ensemble_geometry(const io::CaseConfig& config) {
   return g;
 }
 
+simulation::Model build_realisation_model(const io::CaseConfig& config, long index) {
+  if (!config.ensemble) throw std::invalid_argument("build_realisation_model: the case has no ensemble section");
+  const RealisationSeeds seeds = realisation_seeds(*config.ensemble, index);
+  simulation::ParameterSampler sampler(seeds.of_group);
+  return simulation::build_model(realisation_case(config, seeds), sampler);
+}
+
 std::optional<RealisationRecord> run_realisation(const io::CaseConfig& config, const EnsembleGeometry& geometry,
                                                  long index, const std::function<bool()>& stop_requested,
                                                  const std::function<void()>& after_step) {
@@ -116,9 +115,7 @@ std::optional<RealisationRecord> run_realisation(const io::CaseConfig& config, c
   record.index = index;
   record.seeds = realisation_seeds(*config.ensemble, index);
   record.maps.index = index;
-  const io::CaseConfig c = realisation_case(config, record.seeds);
-  simulation::ParameterSampler sampler(record.seeds.of_group);
-  simulation::Model model = simulation::build_model(c, sampler);
+  simulation::Model model = build_realisation_model(config, index);
   record.draws = model.parameter_draws;
   record.natural_fractures = static_cast<int>(model.network.fractures.size());
   record.mesh = mesh_signature(model.system->mesh());

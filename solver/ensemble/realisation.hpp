@@ -13,6 +13,7 @@
 
 #include "ensemble/likelihood_maps.hpp"
 #include "io/case_config.hpp"
+#include "simulation/model.hpp"
 #include "simulation/parameter_sampling.hpp"
 
 namespace hfdda::ensemble {
@@ -43,7 +44,7 @@ std::vector<double> map_times(const io::EnsembleConfig& ensemble, double end_tim
 /// aggregated per joint ran on it: joint count and a hash of the joint end points.
 struct MeshSignature {
   int joints = 0;
-  std::string hash;  ///< 16 hex digits (FNV-1a of the coordinates' bits)
+  std::string hash;  ///< core/fingerprint.hpp of the end points' coordinates
   bool operator==(const MeshSignature&) const = default;
 };
 
@@ -76,6 +77,10 @@ struct EnsembleGeometry {
   std::vector<double> map_times_s;
 };
 EnsembleGeometry ensemble_geometry(const io::CaseConfig& config);
+
+/// The model of realisation `index` of `config` (its network seed and group seeds), ready
+/// to run like any case: `hfdda ensemble --realisation I` runs it with every output file.
+simulation::Model build_realisation_model(const io::CaseConfig& config, long index);
 
 /// Runs realisation `index` of `config` (which must have an ensemble section) in memory.
 /// A step that does not converge gives a "failed" record with the reason and the

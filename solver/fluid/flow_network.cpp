@@ -429,7 +429,7 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolv
   double shift = 1.0;
   Eigen::SparseMatrix<double> shifted;
   const int max_iterations = pseudo_transient ? 4 * settings_.max_newton_iterations : settings_.max_newton_iterations;
-  for (int it = 0; it < max_iterations; ++it) {
+  for (int it = 0; it < max_iterations; ++it) try {
     evaluate(x, base, s, ev, true);
     rescale_partly_filled_nodes(ev);
     progress.residual = std::max(0.0, ev.residual.cwiseAbs().maxCoeff() - round_off) / mass_scale;
@@ -472,6 +472,10 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolv
       stats.max_relative_residual = std::max(stats.max_relative_residual, progress.residual);
       return true;
     }
+  } catch (const ConvergenceError&) {
+    // A singular Jacobian (e.g. an iterate that has swung a barely held block far open):
+    // this Newton run has failed; the caller's fallbacks start again from their own guess.
+    return false;
   }
   return false;
 }
