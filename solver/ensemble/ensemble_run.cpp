@@ -118,6 +118,7 @@ json record_json(const RealisationRecord& r) {
          {"mass_injected_kg", r.mass_injected_kg},
          {"open_length_m", r.open_length_m},
          {"wet_length_m", r.wet_length_m},
+         {"peak_memory_mb", r.peak_memory_mb},
          {"mesh", {{"joints", r.mesh.joints}, {"hash", r.mesh.hash}}}};
   json& seeds = j["seeds"];
   for (const auto& [group, seed] : r.seeds.of_group) seeds[group] = seed;
@@ -148,6 +149,7 @@ RealisationRecord record_from(const json& j) {
   r.mass_injected_kg = j.at("mass_injected_kg");
   r.open_length_m = j.at("open_length_m");
   r.wet_length_m = j.at("wet_length_m");
+  r.peak_memory_mb = j.value("peak_memory_mb", 0.0);
   r.mesh.joints = j.at("mesh").at("joints");
   r.mesh.hash = j.at("mesh").at("hash");
   r.seeds.index = r.index;
@@ -332,8 +334,9 @@ EnsembleSummary write_ensemble_maps(const std::string& out_dir, const std::vecto
   EnsembleSummary summary;
   summary.requested = first.realisations;
   json failures = json::array();
-  double wall = 0.0;
+  double wall = 0.0, peak_memory_mb = 0.0;
   for (const auto& [index, r] : by_index) {
+    peak_memory_mb = std::max(peak_memory_mb, r.peak_memory_mb);
     maps.add(r.maps);
     all.push_back(r.maps);
     ++summary.found;
@@ -366,6 +369,7 @@ EnsembleSummary write_ensemble_maps(const std::string& out_dir, const std::vecto
          {"failures", failures},
          {"wall_s_total", wall},
          {"wall_s_per_realisation", summary.found ? wall / summary.found : 0.0},
+         {"peak_memory_mb_per_process", peak_memory_mb},
          {"sources", dirs}};
   json& per_time = s["maps"];
   per_time = json::array();

@@ -2,6 +2,8 @@
 
 #include "ensemble/realisation.hpp"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -142,6 +144,8 @@ std::optional<RealisationRecord> run_realisation(const io::CaseConfig& config, c
   record.time_s = result.time_s;
   record.wall_s = result.wall_seconds;
   if (model.flow) record.mass_injected_kg = model.flow->injected_mass();
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0) record.peak_memory_mb = usage.ru_maxrss / 1024.0;  // KiB on Linux
   const MapSnapshot last = snapshot(model, geometry);
   for (int j : last.open_joints) record.open_length_m += (geometry.joints[j].b - geometry.joints[j].a).norm();
   for (int j : last.wet_joints) record.wet_length_m += (geometry.joints[j].b - geometry.joints[j].a).norm();

@@ -157,6 +157,7 @@ Metrics variant_metrics(const VariantRun& r) {
   m.numbers["completed_fraction"] = requested > 0 ? completed / requested : kNaN;
   m.numbers["records_missing"] = s.at("missing");
   m.numbers["wall_s_per_realisation"] = per_realisation;
+  m.numbers["peak_memory_mb_per_process"] = s.value("peak_memory_mb_per_process", 0.0);
   // Busy time of the realisations over the processes' elapsed time.
   m.numbers["parallel_efficiency"] =
       r.run.wall_seconds > 0 ? double(s.at("wall_s_total")) / (processes * r.run.wall_seconds) : kNaN;
