@@ -47,6 +47,8 @@ endif()
 if(MPIEXEC)
   set(ENV{OMPI_ALLOW_RUN_AS_ROOT} 1)
   set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} 1)
+  # Containers often forbid the cross-memory attach OpenMPI's shared-memory transport tries.
+  set(ENV{OMPI_MCA_btl_vader_single_copy_mechanism} none)
   # OpenMPI keeps memory to the end of the process: not ours to report under the sanitizers.
   set(ENV{ASAN_OPTIONS} "detect_leaks=0")
   foreach(ranks 2 4)

@@ -84,6 +84,7 @@ void run_ensemble(VariantRun& r, const std::string& case_path, const std::string
   if (processes > 1) {
     setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);  // CI containers run as root
     setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+    setenv("OMPI_MCA_btl_vader_single_copy_mechanism", "none", 0);  // containers forbid cross-memory attach
     args = {"mpirun", "--oversubscribe", "-n", std::to_string(processes)};
   } else if (v.has("ranks") && v.number("ranks") > 1) {
     r.note("mpirun not found: one process");
