@@ -192,7 +192,7 @@ EnsembleManifest make_manifest(const io::CaseConfig& config, const EnsembleGeome
   const io::EnsembleConfig& e = *config.ensemble;
   EnsembleManifest m;
   m.case_file = config.file;
-  m.case_hash = hash_text(read_text(config.file));
+  m.case_hash = hash_text(config.source_text);  // the top file and every base it extends
   m.realisations = e.realisations;
   m.master_seed = e.master_seed;
   m.resample = e.resample;

@@ -33,7 +33,7 @@ struct Shard {
 /// everything but the shard agrees.
 struct EnsembleManifest {
   std::string case_file;
-  std::string case_hash;       ///< of the case as read (every key), 16 hex digits
+  std::string case_hash;       ///< of the case files read (the extends chain), 16 hex digits
   int realisations = 0;
   int master_seed = 0;
   std::vector<std::string> resample;

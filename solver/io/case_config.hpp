@@ -313,6 +313,9 @@ struct EnsembleConfig {
 struct CaseConfig {
   std::string file;   ///< path of the (top) case file
   std::string mesh_file;  ///< file that set the `mesh` section (the top file or a base it extends)
+  /// Every file of the `extends` chain, name and text, in the order read: what the case
+  /// is made of (an ensemble's fingerprint; a base file edited changes it).
+  std::string source_text;
   std::string title;
   DomainConfig domain;
   MeshConfig mesh;

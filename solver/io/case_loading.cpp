@@ -92,6 +92,7 @@ void apply_base(FileReader& r, const YAML::Node& node, std::vector<ChainEntry>& 
 
 void apply_case_text(const std::string& text, const std::string& file,
                      std::vector<ChainEntry>& chain, CaseConfig& config, Provenance& where) {
+  config.source_text += file + "\n" + text + "\n";
   const YAML::Node root = parse_yaml(prepare_case_text(text, file), file);
   check_yaml_tree(root, file);
   if (root.IsNull())

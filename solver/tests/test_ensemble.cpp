@@ -136,6 +136,23 @@ TEST(EnsembleRecords, WrittenAtomicallyReadBackAndSkippedOnResume) {
   }
 }
 
+TEST(EnsembleRecords, EditingABaseFileMakesAnotherEnsemble) {
+  // A resumed ensemble must not mix realisations of two versions of a case: the
+  // manifest's case hash covers the files the top file extends.
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "hfdda_ensemble_extends";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(kTinyCase, dir / "base.yaml", std::filesystem::copy_options::overwrite_existing);
+  { std::ofstream(dir / "top.yaml") << "extends: base.yaml\ntitle: \"tiny, extended\"\n"; }
+  auto hash = [&] {
+    const io::CaseConfig c = io::load_case_file((dir / "top.yaml").string());
+    return ensemble::make_manifest(c, ensemble::ensemble_geometry(c), {}).case_hash;
+  };
+  const std::string before = hash();
+  EXPECT_EQ(hash(), before);
+  { std::ofstream(dir / "base.yaml", std::ios::app) << "probes: [{name: inlet, at: [0, 0]}]\n"; }
+  EXPECT_NE(hash(), before);
+}
+
 TEST(EnsembleRecords, ACorruptRecordIsAnErrorNamingItsFile) {
   const std::string path = (std::filesystem::path(testing::TempDir()) / "r000001.json").string();
   { std::ofstream(path) << "{\"index\": 1, \"status\": \"completed\""; }
