@@ -51,6 +51,12 @@ struct MechanicsSettings {
   /// contacts only; contacts whose bond has broken (sliding, re-closed) and vertex-vertex
   /// contacts keep theirs fixed within the step, as penalty springs (seed 5.1).
   bool two_tier_contacts = false;
+  /// With two-tier contacts: the springs of the iterated (intact) contacts are this many
+  /// times k_n and k_s; k_n and k_s are then the penalty springs of the others. An
+  /// iterated spring only sets the pace of the Uzawa iterations (its converged gap is
+  /// zero whatever its stiffness); as stiff as the penalty springs next to it, it
+  /// converges at a rate set by their ratio (docs/design_notes.md section 21).
+  double intact_stiffness_ratio = 100.0;
   double normal_stiffness_N_m = 2.5e12;     ///< k_n
   double shear_stiffness_N_m = 2.5e12;      ///< k_s
   double fixed_point_stiffness_N_m = 2.5e12;
@@ -218,6 +224,13 @@ class BlockSystem {
   [[noreturn]] void throw_alm_limit(double error, double scale) const;
   /// The contact's multipliers are iterated (Augmented Lagrangian) rather than held (two-tier penalty).
   bool iterated(const Contact& c) const { return !settings_.two_tier_contacts || (c.joint >= 0 && c.bonded); }
+  /// Factor on k_n and k_s for this contact's springs: intact_stiffness_ratio for the
+  /// iterated contacts of two-tier contacts, 1 otherwise (MechanicsSettings).
+  double stiffness_scale(const Contact& c) const {
+    return settings_.two_tier_contacts && settings_.augmented_lagrangian && iterated(c)
+               ? settings_.intact_stiffness_ratio
+               : 1.0;
+  }
   // open_close.cpp
   ContactTraction trial_traction(const Contact& c, const Eigen::VectorXd& d, StepStatistics& stats) const;
   std::optional<ContactChange> open_close_change(int contact, const ContactTraction& t, const Eigen::VectorXd& d) const;

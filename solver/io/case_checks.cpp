@@ -289,6 +289,16 @@ void check_stop_condition(const CaseConfig& c, const MergedChecker& m) {
     m.fail("time.stop_when", "fluid_at_edge is a stop of time stepping; a load ramp has load_ramp.stop_when");
 }
 
+void check_intact_stiffness(const CaseConfig& c, const MergedChecker& m) {
+  const double ratio = c.contact.intact_stiffness_ratio;
+  if (!c.contact.two_tier || ratio == 1.0) return;
+  const double factor = std::max(c.contact.normal_stiffness_factor, c.contact.shear_stiffness_factor);
+  if (factor * ratio > kMaxStiffnessFactor)
+    m.fail("contact.intact_stiffness_ratio",
+           "times the larger of normal_stiffness and shear_stiffness is at most 1e6, beyond which the stiffness "
+           "matrix loses all digits (got " + format_number(ratio) + " x " + format_number(factor) + ")");
+}
+
 void check_fractures_in_domain(const CaseConfig& c, const MergedChecker& m) {
   for (std::size_t i = 0; i < c.fractures.size(); ++i) {
     check_point_in_domain(c, m, c.fractures[i].from, item_key("fractures", i) + ".from");
@@ -398,6 +408,9 @@ const std::vector<CrossCheck>& cross_checks() {
        check_material_regions},
       {"`joints.breakable_region: inner` needs `domain.inner`.", check_breakable_region},
       {"`time.stop_when: fluid_at_edge` needs `domain.inner`, a `fluid` and no `load_ramp`.", check_stop_condition},
+      {"With `contact.two_tier`, `contact.intact_stiffness_ratio` times the larger of `normal_stiffness` and "
+       "`shear_stiffness` is at most 1e6.",
+       check_intact_stiffness},
       {"Both ends of every fracture lie in `domain.outer` (its boundary included).",
        check_fractures_in_domain},
       {"Every point-load location, fixed point, injection point and probe lies in "

@@ -257,6 +257,8 @@ struct ContactConfig {
   double fixed_point_stiffness_factor = 100.0;  ///< fixed-point penalty = factor * max E
   /// ALM on intact joint contacts only, penalty on broken ones (seed 5.1); see docs/case_file.md.
   bool two_tier = false;
+  /// With two_tier: intact contacts' springs / the penalty springs (docs/case_file.md).
+  double intact_stiffness_ratio = 100.0;
 };
 
 enum class AnalysisKind { static_analysis, dynamic_analysis };

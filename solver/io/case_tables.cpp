@@ -413,7 +413,16 @@ const Table<ContactConfig>& contact_table() {
                 "with method alm: iterate the multipliers of intact joint contacts only; contacts whose bond "
                 "broke (sliding, closed again) and vertex-vertex contacts keep theirs fixed within a step, "
                 "as penalty springs"},
-               &ContactConfig::two_tier)}};
+               &ContactConfig::two_tier),
+       number({"intact_stiffness_ratio", "-", "none (HFDDA): the seed's two tiers share one stiffness",
+               "with two_tier: the springs of intact joint contacts, whose multipliers are iterated, are this "
+               "many times normal_stiffness and shear_stiffness, which then set the penalty springs of the "
+               "other contacts. It sets only how fast the iterations converge, not where: an iterated contact "
+               "ends with its gap closed whatever its stiffness. As stiff as the penalty springs beside it, a "
+               "contact loses about one seventh of its error per iteration (design notes section 21)"},
+              &ContactConfig::intact_stiffness_ratio, interval(1.0, false, 1.0e4, false),
+              "1: one stiffness for both tiers, as in the seed; normal_stiffness times this ratio at most 1e6, "
+              "beyond which the stiffness matrix loses all digits")}};
   return table;
 }
 

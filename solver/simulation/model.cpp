@@ -522,6 +522,7 @@ dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   dda::MechanicsSettings s;
   s.augmented_lagrangian = c.contact.method == io::ContactMethod::augmented_lagrangian;
   s.two_tier_contacts = c.contact.two_tier;
+  s.intact_stiffness_ratio = c.contact.intact_stiffness_ratio;
   s.normal_stiffness_N_m = c.contact.normal_stiffness_factor * max_modulus;
   s.shear_stiffness_N_m = c.contact.shear_stiffness_factor * max_modulus;
   s.fixed_point_stiffness_N_m = c.contact.fixed_point_stiffness_factor * max_modulus;

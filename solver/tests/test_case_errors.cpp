@@ -45,6 +45,19 @@ TEST(CaseFileErrors, StopAtTheEdgeNeedsAnInnerDomainAndFluid) {
   expect_text_error("time: {dt: 1, end_time: 2, stop_when: at_edge}\n", 1, "time.stop_when", "fluid_at_edge");
 }
 
+TEST(CaseFileErrors, IntactStiffnessRatioKeepsTheMatrixDigits) {
+  expect_text_error("contact: {two_tier: true,\n  intact_stiffness_ratio: 0.5}\n", 2, "contact.intact_stiffness_ratio",
+                    "in [1, 10000]");
+  expect_text_error("contact: {two_tier: true, normal_stiffness: 30,\n  intact_stiffness_ratio: 1e5}\n", 2,
+                    "contact.intact_stiffness_ratio", "in [1, 10000]");
+  expect_text_error("contact: {two_tier: true, shear_stiffness: 1000,\n  intact_stiffness_ratio: 2000}\n", 2,
+                    "contact.intact_stiffness_ratio", "at most 1e6");
+  EXPECT_NO_THROW(load_case_text("contact: {two_tier: true, normal_stiffness: 100, intact_stiffness_ratio: 1e4}\n",
+                                 "ratio.yaml"));
+  EXPECT_NO_THROW(load_case_text("contact: {two_tier: false, normal_stiffness: 1000, intact_stiffness_ratio: 1e4}\n",
+                                 "ratio.yaml"));
+}
+
 TEST(CaseFileErrors, DuplicateKey) {
   expect_text_error("time: {dt: 1}\ntitle: a\ntime: {dt: 2}\n", 3, "time", "duplicate key");
 }
