@@ -192,7 +192,13 @@ EnsembleManifest make_manifest(const io::CaseConfig& config, const EnsembleGeome
   const io::EnsembleConfig& e = *config.ensemble;
   EnsembleManifest m;
   m.case_file = config.file;
-  m.case_hash = hash_text(config.source_text);  // the top file and every base it extends
+  // The top file, every base it extends and every fracture map it reads.
+  std::string identity = config.source_text;
+  for (const io::FractureMapConfig& map : config.fracture_maps) {
+    std::ifstream in(map.path, std::ios::binary);
+    identity += map.path + "\n" + std::string(std::istreambuf_iterator<char>(in), {}) + "\n";
+  }
+  m.case_hash = hash_text(identity);
   m.realisations = e.realisations;
   m.master_seed = e.master_seed;
   m.resample = e.resample;

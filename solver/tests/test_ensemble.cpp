@@ -153,6 +153,23 @@ TEST(EnsembleRecords, EditingABaseFileMakesAnotherEnsemble) {
   EXPECT_NE(hash(), before);
 }
 
+TEST(EnsembleRecords, EditingAFractureMapMakesAnotherEnsemble) {
+  // The same for the CSV files of `fracture_maps`, read when the case is loaded.
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "hfdda_ensemble_map";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(kTinyCase, dir / "base.yaml", std::filesystem::copy_options::overwrite_existing);
+  { std::ofstream(dir / "map.csv") << "x1,y1,x2,y2\n-10,5,10,5\n"; }
+  { std::ofstream(dir / "top.yaml") << "extends: base.yaml\nfracture_maps: [{name: mapped, file: map.csv, natural: true}]\n"; }
+  auto hash = [&] {
+    const io::CaseConfig c = io::load_case_file((dir / "top.yaml").string());
+    return ensemble::make_manifest(c, ensemble::ensemble_geometry(c), {}).case_hash;
+  };
+  const std::string before = hash();
+  EXPECT_EQ(hash(), before);
+  { std::ofstream(dir / "map.csv") << "x1,y1,x2,y2\n-10,6,10,6\n"; }
+  EXPECT_NE(hash(), before);
+}
+
 TEST(EnsembleRecords, ACorruptRecordIsAnErrorNamingItsFile) {
   const std::string path = (std::filesystem::path(testing::TempDir()) / "r000001.json").string();
   { std::ofstream(path) << "{\"index\": 1, \"status\": \"completed\""; }
