@@ -34,6 +34,9 @@ struct Shard {
 struct EnsembleManifest {
   std::string case_file;
   std::string case_hash;       ///< of the case files read (the extends chain), 16 hex digits
+  /// Of the running executable (/proc/self/exe), 16 hex digits: another build of the
+  /// solver may give other realisations, so a directory is resumed only by the same build.
+  std::string solver_build;
   int realisations = 0;
   int master_seed = 0;
   std::vector<std::string> resample;

@@ -134,6 +134,16 @@ TEST(EnsembleRecords, WrittenAtomicallyReadBackAndSkippedOnResume) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("master_seed"), std::string::npos) << e.what();
   }
+  // So is the same ensemble from another build of the solver (its realisations may differ).
+  EXPECT_EQ(manifest.solver_build.size(), 16u);
+  ensemble::EnsembleManifest rebuilt = manifest;
+  rebuilt.solver_build = "0123456789abcdef";
+  try {
+    ensemble::prepare_directory(dir, rebuilt, geometry);
+    FAIL() << "another build was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("another build of the solver"), std::string::npos) << e.what();
+  }
 }
 
 TEST(EnsembleRecords, EditingABaseFileMakesAnotherEnsemble) {
