@@ -569,9 +569,12 @@ def write_report(results: Path, out: Path, source_dir: Path, python: str, junit_
                              run_time_text(case), fig_text])
         sections += render_case(case, summ, plot_result, figures)
 
-    # Figures of cases no longer in the results would contradict the report: drop them.
+    # Figures of cases no longer in the results would contradict the report: drop them,
+    # but not those of the benchmark report beside it (BENCHMARKS.md, make_benchmarks.py).
+    benchmarks = out / "BENCHMARKS.md"
+    benchmark_figures = set(re.findall(r"figures/([^)\s]+\.png)", benchmarks.read_text())) if benchmarks.is_file() else set()
     for stale in sorted(fig_dir.glob("*.png")):
-        if stale.name not in produced:
+        if stale.name not in produced and stale.name not in benchmark_figures:
             stale.unlink()
 
     readme_note = ""

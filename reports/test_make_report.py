@@ -136,6 +136,9 @@ class MakeReportTest(unittest.TestCase):
         self.add_two_cases()
         (self.out / "figures").mkdir(parents=True)
         (self.out / "figures" / "old_case_fig.png").write_bytes(b"stale")
+        # The benchmark report's figure lives in the same folder and is not the case report's to drop.
+        (self.out / "figures" / "network_scaling.png").write_bytes(b"benchmark")
+        (self.out / "BENCHMARKS.md").write_text("![Network scaling](figures/network_scaling.png)\n")
         md = self.report()
 
         self.assertIn("2023-11-14 22:13:20 UTC", md)
@@ -167,6 +170,7 @@ class MakeReportTest(unittest.TestCase):
         self.assertIn("boom: no data", md)
         self.assertIn("*Figure `missing.png` is missing.*", md)
         self.assertFalse((self.out / "figures" / "old_case_fig.png").exists())
+        self.assertTrue((self.out / "figures" / "network_scaling.png").exists())
 
     def test_gating_counted_apart_from_reported_only(self):
         write_case(self.results, "alpha", griffith_like("full"))
