@@ -105,7 +105,7 @@ double BlockSystem::joint_gap(int joint, int end) const {
 std::pair<double, double> BlockSystem::contact_forces(int contact) const {
   const Contact& c = contacts_[contact];
   if (c.state == ContactState::open) return {0.0, 0.0};
-  const double kn = settings_.normal_stiffness_N_m * stiffness_scale(c), ks = settings_.shear_stiffness_N_m * stiffness_scale(c);
+  const double kn = normal_stiffness(c), ks = shear_stiffness(c);
   double normal = 0.0, shear = 0.0;
   const double w = 1.0 / c.n_springs;
   for (int k = 0; k < c.n_springs; ++k) {

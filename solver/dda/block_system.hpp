@@ -224,13 +224,15 @@ class BlockSystem {
   [[noreturn]] void throw_alm_limit(double error, double scale) const;
   /// The contact's multipliers are iterated (Augmented Lagrangian) rather than held (two-tier penalty).
   bool iterated(const Contact& c) const { return !settings_.two_tier_contacts || (c.joint >= 0 && c.bonded); }
-  /// Factor on k_n and k_s for this contact's springs: intact_stiffness_ratio for the
-  /// iterated contacts of two-tier contacts, 1 otherwise (MechanicsSettings).
+  /// k_n and k_s of this contact's springs: times intact_stiffness_ratio for the iterated
+  /// contacts of two-tier contacts (MechanicsSettings).
   double stiffness_scale(const Contact& c) const {
     return settings_.two_tier_contacts && settings_.augmented_lagrangian && iterated(c)
                ? settings_.intact_stiffness_ratio
                : 1.0;
   }
+  double normal_stiffness(const Contact& c) const { return settings_.normal_stiffness_N_m * stiffness_scale(c); }
+  double shear_stiffness(const Contact& c) const { return settings_.shear_stiffness_N_m * stiffness_scale(c); }
   // open_close.cpp
   ContactTraction trial_traction(const Contact& c, const Eigen::VectorXd& d, StepStatistics& stats) const;
   std::optional<ContactChange> open_close_change(int contact, const ContactTraction& t, const Eigen::VectorXd& d) const;

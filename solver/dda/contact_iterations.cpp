@@ -59,7 +59,7 @@ void BlockSystem::assemble_contacts() {
   for (int b = 0; b < n_blocks(); ++b) stiffness_.add_diagonal(b, block_matrix_[b]);
   for (const auto& c : contacts_.all()) {
     if (c.state == ContactState::open) continue;
-    const double kn = settings_.normal_stiffness_N_m * stiffness_scale(c), ks = settings_.shear_stiffness_N_m * stiffness_scale(c);
+    const double kn = normal_stiffness(c), ks = shear_stiffness(c);
     const double w = 1.0 / c.n_springs;
     for (int k = 0; k < c.n_springs; ++k) {
       const auto& s = c.springs[k];
@@ -95,7 +95,7 @@ Eigen::VectorXd BlockSystem::contact_rhs() const {
   Eigen::VectorXd f = step_loads_;
   for (const auto& c : contacts_.all()) {
     if (c.state == ContactState::open) continue;
-    const double kn = settings_.normal_stiffness_N_m * stiffness_scale(c), ks = settings_.shear_stiffness_N_m * stiffness_scale(c);
+    const double kn = normal_stiffness(c), ks = shear_stiffness(c);
     const double w = 1.0 / c.n_springs;
     // Sliding: constant friction force opposing slip (Mohr-Coulomb limit) instead of a shear spring.
     double friction = 0.0;
@@ -116,8 +116,7 @@ Eigen::VectorXd BlockSystem::contact_rhs() const {
 
 ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int iteration, StepStatistics& stats) {
   if (!settings_.augmented_lagrangian) return ContactIteration::converged;  // penalty: one solve
-  const double kn0 = settings_.normal_stiffness_N_m, ks0 = settings_.shear_stiffness_N_m;
-  double largest_scale = 1.0;
+  double largest_stiffness = std::max(settings_.normal_stiffness_N_m, settings_.shear_stiffness_N_m);
   // Uzawa update of the multipliers (eq. 2.19); stop when the corrections are
   // negligible against the contact forces themselves. A contact is one normal and
   // one shear constraint: its springs (one per orientation at a joint end) are driven
@@ -132,8 +131,8 @@ ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int i
   double mismatch = 0.0;  // largest |gap| or |shear| over the contact's length
   for (const auto& c : contacts_.all()) {
     if (c.state == ContactState::open || !iterated(c)) continue;
-    const double kn = kn0 * stiffness_scale(c), ks = ks0 * stiffness_scale(c);
-    largest_scale = std::max(largest_scale, stiffness_scale(c));
+    const double kn = normal_stiffness(c), ks = shear_stiffness(c);
+    largest_stiffness = std::max({largest_stiffness, kn, ks});
     const double w = 1.0 / c.n_springs;
     const double error_before = error;
     double gap = 0.0, shear = 0.0;
@@ -157,7 +156,7 @@ ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int i
                        std::abs(correction[2 * ci + 1] - previous[2 * ci + 1])});
   }
   // Gaps cannot be resolved below the round-off of the coordinates they come from.
-  const double round_off_force = std::max(kn0, ks0) * largest_scale * gap_round_off_m_;
+  const double round_off_force = largest_stiffness * gap_round_off_m_;
   if (error <= settings_.alm_force_tolerance * scale + round_off_force) return ContactIteration::converged;
   // Stalled: the corrections no longer change, so the multiplier updates no longer
   // move the blocks. Around a point where every joint is closed, the contacts form a

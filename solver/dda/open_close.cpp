@@ -51,7 +51,7 @@ std::optional<VertexEdgeSpring> BlockSystem::vertex_vertex_spring(const Contact&
 }
 
 ContactTraction BlockSystem::trial_traction(const Contact& c, const Eigen::VectorXd& d, StepStatistics& stats) const {
-  const double kn = settings_.normal_stiffness_N_m * stiffness_scale(c), ks = settings_.shear_stiffness_N_m * stiffness_scale(c);
+  const double kn = normal_stiffness(c), ks = shear_stiffness(c);
   const double w = 1.0 / c.n_springs;
   ContactTraction t;
   for (int k = 0; k < c.n_springs; ++k) {

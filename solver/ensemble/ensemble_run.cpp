@@ -43,7 +43,7 @@ std::string hash_text(const std::string& text) {
 }
 
 /// Fingerprint of the running executable's file (Linux /proc/self/exe; "unknown" where
-/// it cannot be read). About 20 ms for a 15 MB binary, once per ensemble.
+/// it cannot be read); read once per ensemble.
 std::string executable_hash() {
   std::ifstream in("/proc/self/exe", std::ios::binary);
   if (!in) return "unknown";
@@ -212,10 +212,7 @@ EnsembleManifest make_manifest(const io::CaseConfig& config, const EnsembleGeome
   m.case_file = config.file;
   // The top file, every base it extends and every fracture map it reads.
   std::string identity = config.source_text;
-  for (const io::FractureMapConfig& map : config.fracture_maps) {
-    std::ifstream in(map.path, std::ios::binary);
-    identity += map.path + "\n" + std::string(std::istreambuf_iterator<char>(in), {}) + "\n";
-  }
+  for (const io::FractureMapConfig& map : config.fracture_maps) identity += map.path + "\n" + read_text(map.path) + "\n";
   m.case_hash = hash_text(identity);
   m.solver_build = executable_hash();
   m.realisations = e.realisations;
