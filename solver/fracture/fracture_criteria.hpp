@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fracture/toughness_criterion.hpp"
 #include "mesh/mesh.hpp"
 
 namespace hfdda::fracture {
@@ -44,6 +45,11 @@ struct FractureRules {
   bool shear_failure_of_intact_joints = false; ///< Mohr-Coulomb failure of intact bonds
   /// Seed 2.3 (i): a bond may fail only next to an open contact and a pressurised point.
   bool failure_needs_open_neighbour_and_fluid = true;
+  /// strength: the rules above everywhere (the seed). energy_release_rate: intact joints
+  /// at a crack tip fail by the toughness criterion (toughness_criterion.hpp), the
+  /// bonds elsewhere by the rules above.
+  FailureCriterion criterion = FailureCriterion::strength;
+  Toughness toughness;  ///< with energy_release_rate: K_IC and K_IIC
 };
 
 /// An intact (bonded, locked) joint contact at the trial state of an open-close iteration.
