@@ -151,7 +151,7 @@ std::vector<fracture::BondFailure> CoupledStep::toughness_failures(const dda::Op
     if (fracture::may_fail(b, pressurised, rules_)) ratios[i] = fracture::mixed_mode_ratio(t.tip, rules_.toughness);
   }
   std::vector<fracture::BondFailure> failures = fracture::failing_bonds(overloaded_bonds(trial, at_tip_), pressurised, rules_);
-  const std::vector<int> critical = fracture::critical_tips(ratios, rules_.tie_tolerance);
+  const std::vector<int> critical = fracture::critical_tips(ratios);
   std::vector<int> opening_joints;
   if (critical.empty()) {
     for (const auto& f : failures)

@@ -49,10 +49,10 @@ class CoupledStep {
   /// those marked in `skip` (per joint contact; empty: none).
   std::vector<fracture::Bond> overloaded_bonds(const dda::OpenCloseTrial& trial,
                                                const std::vector<char>& skip = {}) const;
-  /// The failures of the energy_release_rate criterion: the crack-tip joints whose
-  /// mixed-mode ratio reaches 1 (both their bonded contacts open), and the strength
-  /// rules for the bonds away from tips; a tip failure goes first, so the strength
-  /// tension failures wait for a round without one (seed 2.3 iii: one at a time).
+  /// The failures of the energy_release_rate criterion: at every crack tip whose
+  /// mixed-mode ratio reaches 1 its failing joint (both bonded contacts open), and the
+  /// strength rules for the bonds away from tips; tip failures go first, so the strength
+  /// tension failures wait for a round without one (seed 2.3 iii: one change at a time).
   std::vector<fracture::BondFailure> toughness_failures(const dda::OpenCloseTrial& trial, const Eigen::VectorXd& d);
   const std::vector<char>& pressurised_points();
 

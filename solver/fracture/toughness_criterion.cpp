@@ -7,8 +7,6 @@
 
 #include <Eigen/Geometry>
 
-#include "fracture/fracture_criteria.hpp"
-
 namespace hfdda::fracture {
 
 double plane_strain_modulus_Pa(double youngs_modulus_Pa, double poissons_ratio) {
@@ -124,13 +122,10 @@ double level_at_critical_ratio(double level_a, const CrackTip& tip_a, double lev
   return level_b + w * (level_b - level_a);
 }
 
-std::vector<int> critical_tips(const std::vector<double>& ratios, double tie_tolerance) {
-  std::vector<double> over;
-  std::vector<int> index;
-  for (int i = 0; i < static_cast<int>(ratios.size()); ++i)
-    if (ratios[i] >= 1.0) over.push_back(ratios[i]), index.push_back(i);
+std::vector<int> critical_tips(const std::vector<double>& ratios) {
   std::vector<int> selected;
-  for (int k : most_stressed(over, tie_tolerance)) selected.push_back(index[k]);
+  for (int i = 0; i < static_cast<int>(ratios.size()); ++i)
+    if (ratios[i] >= 1.0) selected.push_back(i);
   return selected;
 }
 

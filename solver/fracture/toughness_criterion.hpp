@@ -120,8 +120,11 @@ int nearest_direction(const std::vector<Vec2>& directions, const Vec2& crack_dir
 double level_at_critical_ratio(double level_a, const CrackTip& tip_a, double level_b, const CrackTip& tip_b,
                                const Toughness& toughness);
 
-/// Of the tips at or above ratio 1, the one with the largest ratio and all within
-/// tie_tolerance (relative) of it (seed 2.3 iii, by analogy). Indices into `ratios`.
-std::vector<int> critical_tips(const std::vector<double>& ratios, double tie_tolerance);
+/// The tips at or above ratio 1, each of which advances by one joint. Indices into
+/// `ratios`. Every tip, not only the largest (seed 2.3 iii picks the most stressed
+/// bond): each tip is a front of its own, and as G grows with every joint a front opens,
+/// the first front to fail would otherwise run alone while the others, a few per cent
+/// lower on an irregular mesh, never catch up.
+std::vector<int> critical_tips(const std::vector<double>& ratios);
 
 }  // namespace hfdda::fracture
