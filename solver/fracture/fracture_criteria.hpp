@@ -13,6 +13,8 @@
 //   may_fail()        eligibility, seed 2.3 (i) for rock bonds, seed 5.1 for natural
 //                     fractures (failure localised at their tip)
 //   most_stressed()   selection among the tension failures, seed 2.3 (iii)
+// FractureRules::criterion chooses between these rules everywhere (the seed) and the
+// toughness criterion at crack tips (toughness_criterion.hpp) with these rules elsewhere.
 
 #include <cstdint>
 #include <vector>
