@@ -39,6 +39,9 @@ struct StepStatistics {
   int flow_newton_restarts = 0;     ///< flow solves that needed a fallback start
   long flow_krylov_iterations = 0;  ///< GMRES iterations of the flow Newton (flow_jacobian: krylov)
   long flow_inexact_linear_solves = 0;  ///< GMRES solves stopped at their limit (inexact Newton steps)
+  /// Flow solves at an intermediate contact state that did not converge; the contact
+  /// iterations went on from their best iterate (the final state's solve must converge).
+  int flow_unconverged_solves = 0;
   int max_flow_nodes = 0;
   double max_flow_residual = 0.0;   ///< largest relative mass residual of a flow solve
 
@@ -74,6 +77,7 @@ struct StepStatistics {
     flow_newton_restarts += later.flow_newton_restarts;
     flow_krylov_iterations += later.flow_krylov_iterations;
     flow_inexact_linear_solves += later.flow_inexact_linear_solves;
+    flow_unconverged_solves += later.flow_unconverged_solves;
     max_flow_nodes = std::max(max_flow_nodes, later.max_flow_nodes);
     max_flow_residual = std::max(max_flow_residual, later.max_flow_residual);
     seconds_assembly += later.seconds_assembly;

@@ -84,6 +84,7 @@ StepStatistics CoupledStep::attempt(double dt_s) {
 Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {
   const int max_iterations = mechanics_.settings().max_open_close_iterations;
   bool stiffness_changed = true;
+  int settled_unconverged = 0;
   for (int oc = 1; oc <= max_iterations; ++oc) {
     stats.open_close_iterations = oc;
     if (stiffness_changed) mechanics_.assemble_and_factorise(stats);
@@ -96,6 +97,16 @@ Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {
     for (FluidLoadModel* f : fluids_) coupled_changes += f->update_states(mechanics_);
     stats.coupled_state_changes += coupled_changes;
     if (contact_changes + coupled_changes == 0) {
+      // Settled on a fluid response that is not a solution: one more pass, whose solve
+      // starts from the fluid's best iterate; a second time, the step fails.
+      std::string why;
+      for (const FluidLoadModel* f : fluids_)
+        if (why.empty()) why = f->unconverged();
+      if (!why.empty()) {
+        if (++settled_unconverged == 2) throw ConvergenceError(why);
+        stiffness_changed = false;
+        continue;
+      }
       if (stats.cycle_holds > 0) stats.steps_with_cycles = 1;
       return d;
     }
@@ -122,6 +133,10 @@ Eigen::VectorXd CoupledStep::solve_contacts(StepStatistics& stats) {
     // ||D(m+1) - D(m)|| / ||D(m+1)|| of the inner iterations (erratum 2 in docs/seed_errata.md), reported.
     const double d_norm = d.norm();
     displacement_change = it == 0 || d_norm == 0.0 ? 0.0 : (d - d_previous).norm() / d_norm;
+    // Multiplier updates on a fluid response that is not a solution only chase it: the
+    // pass ends here and the contact states decide (open_close_iterations).
+    if (std::any_of(fluids_.begin(), fluids_.end(), [](const FluidLoadModel* f) { return !f->unconverged().empty(); }))
+      break;
     if (mechanics_.update_multipliers(d, it, stats) != dda::ContactIteration::again) break;
   }
   stats.max_alm_displacement_change = std::max(stats.max_alm_displacement_change, displacement_change);

@@ -7,6 +7,7 @@
 // correcting the mechanical displacement through the factorised K (respond).
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "core/step_statistics.hpp"
@@ -23,6 +24,10 @@ class FluidLoadModel {
   virtual void prepare(const dda::BlockSystem& mechanics, bool stiffness_changed) = 0;
   /// Turns the displacement for the mechanical loads into the coupled one, in place.
   virtual void respond(const dda::BlockSystem& mechanics, Eigen::VectorXd& d) = 0;
+  /// Empty if the last respond() solved the model's own problem to its tolerance; else
+  /// why not. The coupled step then ends that pass of contact iterations and lets the
+  /// contact states change from the model's best iterate; a step must not end on it.
+  virtual std::string unconverged() const { return {}; }
   /// After the contact-state update: changes of the model's own states (outer iterations).
   virtual int update_states(const dda::BlockSystem& mechanics) = 0;
   /// Points where the fluid is pressurised now (propagation rule, seed 2.3 i).

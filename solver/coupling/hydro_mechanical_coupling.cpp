@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+
 namespace hfdda::coupling {
 
 namespace {
@@ -109,14 +110,22 @@ void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::Vec
   if (operator_) {
     const long products = operator_->products(), iterations = operator_->linear_iterations(),
                inexact = operator_->inexact_solves();
-    fs = network_.solve(base, *operator_);
+    fs = network_.solve(base, *operator_, fluid::FailurePolicy::keep_best_iterate);
     stats_.sensitivity_products += operator_->products() - products;
     stats_.krylov_iterations += operator_->linear_iterations() - iterations;
     stats_.inexact_linear_solves += operator_->inexact_solves() - inexact;
   } else {
-    fs = network_.solve(base, sensitivity_);
+    fluid::DenseApertureModel model(sensitivity_);
+    fs = network_.solve(base, model, fluid::FailurePolicy::keep_best_iterate);
   }
   ++stats_.flow_solves;
+  // A flow solve that fails at an intermediate contact state is not the end of the step:
+  // the contact iterations go on from its best iterate, and the state changes they make
+  // (a block that closes on its neighbour, a joint that opens) often give a problem the
+  // next solve converges on. Only the step's final state must be converged
+  // (CoupledStep::open_close_iterations checks unconverged()).
+  last_unconverged_ = fs.unconverged;
+  stats_.unconverged_flow_solves += !fs.unconverged.empty();
   stats_.newton_iterations += fs.newton_iterations;
   stats_.newton_restarts += fs.restarts;
   stats_.max_relative_residual = std::max(stats_.max_relative_residual, fs.max_relative_residual);
@@ -168,6 +177,7 @@ void HydroMechanicalCoupling::add_statistics(StepStatistics& step) const {
   step.flow_newton_restarts += stats_.newton_restarts;
   step.flow_krylov_iterations += stats_.krylov_iterations;
   step.flow_inexact_linear_solves += stats_.inexact_linear_solves;
+  step.flow_unconverged_solves += stats_.unconverged_flow_solves;
   step.max_flow_nodes = std::max(step.max_flow_nodes, stats_.max_nodes);
   step.max_flow_residual = std::max(step.max_flow_residual, stats_.max_relative_residual);
   step.seconds_sensitivity += stats_.seconds_sensitivity;

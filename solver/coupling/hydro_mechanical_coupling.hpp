@@ -44,6 +44,7 @@ struct CouplingStatistics {
   long sensitivity_products = 0;  ///< products with the operator S (krylov)
   long krylov_iterations = 0;
   long inexact_linear_solves = 0;   ///< Krylov solves stopped at their limit (inexact Newton steps)
+  int unconverged_flow_solves = 0;  ///< flow solves inside the contact iterations that kept their best iterate
 };
 
 /// Couples a FlowNetwork whose fractures are the mesh joints (same indices) with the
@@ -56,6 +57,8 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   void prepare(const dda::BlockSystem& system, bool stiffness_changed) override;
   /// d += K^-1 B p for the pressures the flow solve finds with the apertures of d.
   void respond(const dda::BlockSystem& system, Eigen::VectorXd& d) override;
+  /// Why the last flow solve did not converge (empty if it did).
+  std::string unconverged() const override { return last_unconverged_; }
   int update_states(const dda::BlockSystem& system) override;
   const std::vector<char>& pressurised_points() const override { return pressurised_; }
   bool wetted(int joint) const override { return network_.wetted(joint); }
@@ -81,6 +84,7 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   std::unique_ptr<ApertureOperator> operator_;   // S as an operator (krylov path)
   Eigen::VectorXd work_;
   std::vector<char> pressurised_;
+  std::string last_unconverged_;                 // why the last flow solve did not converge (empty: it did)
   CouplingStatistics stats_;
 };
 

@@ -434,6 +434,7 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolv
     rescale_partly_filled_nodes(ev);
     progress.residual = std::max(0.0, ev.residual.cwiseAbs().maxCoeff() - round_off) / mass_scale;
     const double merit = ev.residual.norm();
+    if (merit < best_merit_) best_merit_ = merit, best_unknowns_ = x, best_fill_scale_ = fill_scale_;
     const bool converged_residual = merit <= tol * mass_scale + round_off;
     Eigen::VectorXd dx;
     double alpha = 1.0;
@@ -485,7 +486,7 @@ FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, const Eigen:
   return solve(base, model);
 }
 
-FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, ApertureModel& s) {
+FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, ApertureModel& s, FailurePolicy on_failure) {
   const int n = static_cast<int>(trial_nodes_.size());
   const int nf = static_cast<int>(trial_fractures_.size());
   if (base.size() != 2 * nf || s.n_ends() != 2 * nf || s.n_nodes() != n)
@@ -493,7 +494,15 @@ FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, ApertureMode
   FlowSolveStatistics stats;
   if (n == 0) return stats;
   Evaluation ev;
-  solve_mass_balance(base, s, stats);
+  best_merit_ = std::numeric_limits<double>::infinity();
+  try {
+    solve_mass_balance(base, s, stats);
+  } catch (const ConvergenceError& e) {
+    if (on_failure == FailurePolicy::throw_error || best_unknowns_.size() != n) throw;
+    stats.unconverged = e.what();
+    unknowns_ = best_unknowns_;
+    fill_scale_ = best_fill_scale_;
+  }
   evaluate(unknowns_, base, s, ev, false);
   // Mass-conservative update: the stored mass is what flowed in, to round-off.
   pressure_ = ev.pressure;

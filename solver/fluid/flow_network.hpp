@@ -106,6 +106,15 @@ struct FlowSolveStatistics {
   int restarts = 0;                    ///< fallbacks used after Newton stalled (see the header)
   int zero_pressure_nodes = 0;
   double max_relative_residual = 0.0;  ///< max |mass residual| / mass scale at convergence
+  /// Empty if the solve converged; else why not. Only with FailurePolicy::keep_best_iterate,
+  /// under which the trial state is then the iterate with the smallest mass residual.
+  std::string unconverged;
+};
+
+/// What FlowNetwork::solve does when no fallback converges.
+enum class FailurePolicy {
+  throw_error,        ///< throw ConvergenceError
+  keep_best_iterate,  ///< keep the iterate with the smallest mass residual, say why in the statistics
 };
 
 class FlowNetwork {
@@ -132,7 +141,8 @@ class FlowNetwork {
   /// column per trial node). Throws ConvergenceError.
   FlowSolveStatistics solve(const Eigen::VectorXd& base_aperture_m, const Eigen::MatrixXd& sensitivity_m_Pa);
   /// The same with S given as a model (dense or an operator; fluid/aperture_model.hpp).
-  FlowSolveStatistics solve(const Eigen::VectorXd& base_aperture_m, ApertureModel& sensitivity);
+  FlowSolveStatistics solve(const Eigen::VectorXd& base_aperture_m, ApertureModel& sensitivity,
+                            FailurePolicy on_failure = FailurePolicy::throw_error);
   /// Trial pressures per trial node [Pa] (0 at zero-pressure nodes).
   const Eigen::VectorXd& trial_pressure() const { return pressure_; }
   /// Pressurised in the trial: in the network, above zero pressure.
@@ -254,6 +264,10 @@ class FlowNetwork {
   Eigen::VectorXd hydraulic_width_;                      // per trial end: w0 of its fracture
   Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_;
   Eigen::VectorXd fill_scale_;                           // per trial node: P of the fill state [Pa]
+  // The iterate with the smallest mass residual of the current solve, over all its
+  // Newton runs (FailurePolicy::keep_best_iterate).
+  Eigen::VectorXd best_unknowns_, best_fill_scale_;
+  double best_merit_ = 0.0;
   std::vector<double> point_state_;                      // per point: pressure [Pa] if full, else fill fraction - 1
   std::vector<char> reached_;                            // the fluid has been at the point
   std::vector<double> guess_state_;                      // per point, warm start across topology changes

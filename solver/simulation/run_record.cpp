@@ -121,6 +121,10 @@ std::vector<OutputColumn> make_fixed_columns() {
        "GMRES solves that stopped at their iteration limit before their tolerance; Newton used them as inexact "
        "steps, its own convergence test being on the mass residual (krylov only)",
        [](const StepContext& c) { return double(c.stats.flow_inexact_linear_solves); }},
+      {"flow_unconverged_solves", "-",
+       "flow solves at an intermediate contact state that did not converge; the contact iterations went on from "
+       "their iterate with the smallest mass residual (the step's final state must converge)",
+       [](const StepContext& c) { return double(c.stats.flow_unconverged_solves); }},
       {"flow_max_residual", "-", "largest relative mass residual of a flow solve",
        [](const StepContext& c) { return c.stats.max_flow_residual; }},
       {"wetted_joints", "-", "fluid-filled joints (0 without a flow network)",

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
+#include "core/errors.hpp"
 #include "coupling/coupled_step.hpp"
 #include "coupling/prescribed_pressure.hpp"
 #include "dda/block_system.hpp"
@@ -77,6 +79,73 @@ TEST(CoupledStep, MatchesMechanicsLoadedByTheSolvedPressures) {
   // The injected mass is stored, nothing else.
   EXPECT_NEAR(flow.injected_mass(), 0.5, 1e-15);
   EXPECT_LT(flow.mass_balance_error(), 1e-12);
+}
+
+/// A fluid model that passes everything on to another one but reports its response as
+/// unconverged for the first `unconverged_responses` calls (all of them if negative).
+class UnconvergedFluid final : public coupling::FluidLoadModel {
+ public:
+  UnconvergedFluid(coupling::FluidLoadModel& inner, int unconverged_responses)
+      : inner_(inner), left_(unconverged_responses) {}
+  void begin_step(dda::BlockSystem& m, double dt) override { inner_.begin_step(m, dt); }
+  void prepare(const dda::BlockSystem& m, bool changed) override { inner_.prepare(m, changed); }
+  void respond(const dda::BlockSystem& m, Eigen::VectorXd& d) override {
+    inner_.respond(m, d);
+    ++responses;
+    unconverged_ = left_ != 0;
+    if (left_ > 0) --left_;
+  }
+  std::string unconverged() const override { return unconverged_ ? "test fluid: not converged" : ""; }
+  int update_states(const dda::BlockSystem& m) override { return inner_.update_states(m); }
+  const std::vector<char>& pressurised_points() const override { return inner_.pressurised_points(); }
+  bool wetted(int joint) const override { return inner_.wetted(joint); }
+  void commit(const dda::BlockSystem& m) override { inner_.commit(m); }
+  void roll_back() override { inner_.roll_back(); }
+  int responses = 0;
+
+ private:
+  coupling::FluidLoadModel& inner_;
+  int left_;
+  bool unconverged_ = false;
+};
+
+TEST(CoupledStep, NeverEndsOnAnUnconvergedFluidResponse) {
+  // A fluid solve that fails inside the contact iterations ends that pass early (one
+  // contact iteration, not the ALM's many on a response that is not a solution), and
+  // a step whose contacts settle on such a response fails with the fluid's reason.
+  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  config.fluid.reset();
+  config.injections.clear();
+  config.fractures[0].fluid_filled = false;
+  simulation::Model model = simulation::build_model(config);
+  const auto& mesh = model.system->mesh();
+  std::vector<double> pressure(mesh.points.size(), 0.0);
+  std::vector<char> wetted(mesh.joints.size(), 0);
+  for (std::size_t j = 0; j < mesh.joints.size(); ++j)
+    if (std::abs(mesh.points[mesh.joints[j].point_p].y()) < 1e-9 && std::abs(mesh.points[mesh.joints[j].point_q].y()) < 1e-9 &&
+        std::abs(mesh.points[mesh.joints[j].point_p].x()) <= 3.0 && std::abs(mesh.points[mesh.joints[j].point_q].x()) <= 3.0) {
+      wetted[j] = 1;
+      pressure[mesh.joints[j].point_p] = pressure[mesh.joints[j].point_q] = 1.0e6;
+    }
+  coupling::PrescribedPressure prescribed(mesh, pressure, wetted);
+
+  UnconvergedFluid always(prescribed, -1);
+  coupling::CoupledStep failing(*model.system, {&always});
+  try {
+    failing.advance(1.0, 0);
+    ADD_FAILURE() << "a step ended on an unconverged fluid response";
+  } catch (const ConvergenceError& e) {
+    EXPECT_NE(std::string(e.what()).find("test fluid: not converged"), std::string::npos) << e.what();
+  }
+  // One response per pass of contact iterations: each pass ended at once instead of
+  // updating multipliers on a response that is not a solution.
+  EXPECT_GE(always.responses, 1);
+  EXPECT_LE(always.responses, model.system->settings().max_open_close_iterations);
+  // A response that converges after the first one lets the step end normally.
+  UnconvergedFluid once(prescribed, 1);
+  const StepStatistics recovered = coupling::CoupledStep(*model.system, {&once}).advance(1.0, 0);
+  EXPECT_GE(recovered.open_close_iterations, 2);
+  EXPECT_GT(recovered.alm_iterations, recovered.open_close_iterations);
 }
 
 TEST(CoupledStep, KrylovPathGivesTheDenseSolution) {
