@@ -2,7 +2,7 @@
 
 namespace hfdda::coupling {
 
-BondList::BondList(const dda::BlockSystem& system) {
+BondList::BondList(const dda::BlockSystem& system) : crack_tips_(system) {
   const auto& joints = system.mesh().joints;
   const auto& points = system.mesh().points;
   strength_.reserve(joints.size());

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "coupling/crack_tips.hpp"
 #include "dda/block_system.hpp"
 #include "fracture/fracture_criteria.hpp"
 
@@ -25,9 +26,12 @@ class BondList {
   /// Fills the neighbour queries the localisation rules need (seed 2.3 i, 5.1).
   static void add_neighbours(const dda::BlockSystem& system, fracture::Bond& bond);
   const fracture::BondStrength& strength(int joint) const { return strength_[joint]; }
+  /// The crack tips of the system (the toughness criterion's view of the same bonds).
+  const CrackTips& crack_tips() const { return crack_tips_; }
 
  private:
   std::vector<fracture::BondStrength> strength_;  // per joint
+  CrackTips crack_tips_;
 };
 
 }  // namespace hfdda::coupling

@@ -130,14 +130,51 @@ Eigen::VectorXd CoupledStep::solve_contacts(StepStatistics& stats) {
 
 int CoupledStep::update_contact_states(const Eigen::VectorXd& d, StepStatistics& stats) {
   const dda::OpenCloseTrial trial = mechanics_.trial_contacts(d, stats);
-  const auto failures = fracture::failing_bonds(overloaded_bonds(trial), pressurised_points(), rules_);
+  const auto failures = rules_.criterion == fracture::FailureCriterion::strength
+                            ? fracture::failing_bonds(overloaded_bonds(trial), pressurised_points(), rules_)
+                            : toughness_failures(trial, d);
   return mechanics_.apply_state_changes(d, merge_failures(trial.changes, failures), stats);
 }
 
-std::vector<fracture::Bond> CoupledStep::overloaded_bonds(const dda::OpenCloseTrial& trial) const {
+std::vector<fracture::BondFailure> CoupledStep::toughness_failures(const dda::OpenCloseTrial& trial,
+                                                                   const Eigen::VectorXd& d) {
+  bonds_.crack_tips().find(mechanics_, trial.tractions, d, tips_, at_tip_);
+  const std::vector<char>& pressurised = pressurised_points();
+  std::vector<double> ratios(tips_.size(), 0.0);
+  for (std::size_t i = 0; i < tips_.size(); ++i) {
+    const CrackTipState& t = tips_[i];
+    if (t.failing_joint < 0) continue;
+    const int ci = t.failing_contact;
+    // Rule (i) of seed 2.3 at the tip: the contact that would open first must be eligible.
+    fracture::Bond b = bonds_.bond(mechanics_, ci, trial.tractions[ci].normal_N, trial.tractions[ci].shear_N);
+    if (rules_.failure_needs_open_neighbour_and_fluid) BondList::add_neighbours(mechanics_, b);
+    if (fracture::may_fail(b, pressurised, rules_)) ratios[i] = fracture::mixed_mode_ratio(t.tip, rules_.toughness);
+  }
+  std::vector<fracture::BondFailure> failures = fracture::failing_bonds(overloaded_bonds(trial, at_tip_), pressurised, rules_);
+  const std::vector<int> critical = fracture::critical_tips(ratios);
+  std::vector<int> opening_joints;
+  if (critical.empty()) {
+    for (const auto& f : failures)
+      if (f.mode == fracture::FailureMode::tension) opening_joints.push_back(mechanics_.contacts()[f.contact].joint);
+  } else {
+    for (int i : critical) opening_joints.push_back(tips_[i].failing_joint);
+  }
+  // A joint opens whole: a half-open joint would leave its tip inside the joint, where
+  // the closure data of whole joints cannot see it.
+  std::erase_if(failures, [](const fracture::BondFailure& f) { return f.mode == fracture::FailureMode::tension; });
+  const auto& contacts = mechanics_.contacts();
+  for (int joint : opening_joints)
+    for (int ci : mechanics_.joint_contacts(joint))
+      if (contacts[ci].bonded && std::none_of(failures.begin(), failures.end(), [ci](const auto& f) { return f.contact == ci; }))
+        failures.push_back({ci, fracture::FailureMode::tension, 0.0});  // two tips may pick one joint
+  return failures;
+}
+
+std::vector<fracture::Bond> CoupledStep::overloaded_bonds(const dda::OpenCloseTrial& trial,
+                                                          const std::vector<char>& skip) const {
   std::vector<fracture::Bond> bonds;
   for (int ci = 0; ci < static_cast<int>(trial.tractions.size()); ++ci) {
-    if (!bonds_.is_candidate(mechanics_, ci)) continue;
+    if (!bonds_.is_candidate(mechanics_, ci) || (!skip.empty() && skip[ci])) continue;
     fracture::Bond b = bonds_.bond(mechanics_, ci, trial.tractions[ci].normal_N, trial.tractions[ci].shear_N);
     // Only a bond over a limit is a candidate; the neighbour searches (seed 2.3 i, 5.1)
     // are then made for those few, not for every intact bond of every iteration.

@@ -45,8 +45,15 @@ class CoupledStep {
   Eigen::VectorXd solve_contacts(StepStatistics& stats);
   /// Trial tractions, bond failures and contact state changes; returns the count applied.
   int update_contact_states(const Eigen::VectorXd& d, StepStatistics& stats);
-  /// Intact breakable bonds over their tensile or shear limit at the trial state.
-  std::vector<fracture::Bond> overloaded_bonds(const dda::OpenCloseTrial& trial) const;
+  /// Intact breakable bonds over their tensile or shear limit at the trial state, but
+  /// those marked in `skip` (per joint contact; empty: none).
+  std::vector<fracture::Bond> overloaded_bonds(const dda::OpenCloseTrial& trial,
+                                               const std::vector<char>& skip = {}) const;
+  /// The failures of the energy_release_rate criterion: at every crack tip whose
+  /// mixed-mode ratio reaches 1 its failing joint (both bonded contacts open), and the
+  /// strength rules for the bonds away from tips; tip failures go first, so the strength
+  /// tension failures wait for a round without one (seed 2.3 iii: one change at a time).
+  std::vector<fracture::BondFailure> toughness_failures(const dda::OpenCloseTrial& trial, const Eigen::VectorXd& d);
   const std::vector<char>& pressurised_points();
 
   dda::BlockSystem& mechanics_;
@@ -55,6 +62,8 @@ class CoupledStep {
   bool trace_cuts_;
   BondList bonds_;
   std::vector<char> pressurised_;                      // union of the fluids' masks
+  std::vector<CrackTipState> tips_;                    // energy criterion: this round's tips
+  std::vector<char> at_tip_;                           // per joint contact: governed by a tip
 };
 
 }  // namespace hfdda::coupling

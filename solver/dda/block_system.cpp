@@ -102,6 +102,18 @@ double BlockSystem::joint_gap(int joint, int end) const {
   return gap;
 }
 
+Vec2 BlockSystem::joint_end_separation(int joint, int end, const Eigen::VectorXd& d) const {
+  // Block a runs the joint p -> q from corner_a, block b runs it q -> p from corner_b.
+  const mesh::Joint& j = mesh_.joints[joint];
+  const int corner_a = (j.corner_a + end) % n_corners(j.block_a);
+  const int corner_b = (j.corner_b + 1 - end) % n_corners(j.block_b);
+  auto moved = [&](int block, int local) {
+    const Vec2 now = d.size() == 0 ? corner(block, local) : displaced(block, corner(block, local), d);
+    return Vec2(now - initial_corner(block, local));
+  };
+  return moved(j.block_b, corner_b) - moved(j.block_a, corner_a);
+}
+
 std::pair<double, double> BlockSystem::contact_forces(int contact) const {
   const Contact& c = contacts_[contact];
   if (c.state == ContactState::open) return {0.0, 0.0};

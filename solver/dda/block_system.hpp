@@ -190,6 +190,10 @@ class BlockSystem {
   double joint_gap(int joint, int end) const;
   /// Contact normal and shear force (tension positive) of a contact at the committed state [N].
   std::pair<double, double> contact_forces(int contact) const;
+  /// Displacement of block b's face relative to block a's at a joint's end 0 (point p) or
+  /// 1 (point q) since t = 0, their corners there [m]: at the committed state, or with
+  /// the step displacement `d` of the current step added (non-empty d: during a step).
+  Vec2 joint_end_separation(int joint, int end, const Eigen::VectorXd& d = {}) const;
   /// Displacement of each block in the last committed step.
   const std::vector<Vec6>& last_step_displacement() const { return blocks_.last_d; }
   int total_vertex_vertex_activations() const { return total_vv_activations_; }

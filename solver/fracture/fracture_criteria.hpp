@@ -13,10 +13,13 @@
 //   may_fail()        eligibility, seed 2.3 (i) for rock bonds, seed 5.1 for natural
 //                     fractures (failure localised at their tip)
 //   most_stressed()   selection among the tension failures, seed 2.3 (iii)
+// FractureRules::criterion chooses between these rules everywhere (the seed) and the
+// toughness criterion at crack tips (toughness_criterion.hpp) with these rules elsewhere.
 
 #include <cstdint>
 #include <vector>
 
+#include "fracture/toughness_criterion.hpp"
 #include "mesh/mesh.hpp"
 
 namespace hfdda::fracture {
@@ -44,6 +47,11 @@ struct FractureRules {
   bool shear_failure_of_intact_joints = false; ///< Mohr-Coulomb failure of intact bonds
   /// Seed 2.3 (i): a bond may fail only next to an open contact and a pressurised point.
   bool failure_needs_open_neighbour_and_fluid = true;
+  /// strength: the rules above everywhere (the seed). energy_release_rate: intact joints
+  /// at a crack tip fail by the toughness criterion (toughness_criterion.hpp), the
+  /// bonds elsewhere by the rules above.
+  FailureCriterion criterion = FailureCriterion::strength;
+  Toughness toughness;  ///< with energy_release_rate: K_IC and K_IIC
 };
 
 /// An intact (bonded, locked) joint contact at the trial state of an open-close iteration.

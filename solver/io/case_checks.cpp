@@ -289,6 +289,15 @@ void check_stop_condition(const CaseConfig& c, const MergedChecker& m) {
     m.fail("time.stop_when", "fluid_at_edge is a stop of time stepping; a load ramp has load_ramp.stop_when");
 }
 
+void check_fracture_criterion(const CaseConfig& c, const MergedChecker& m) {
+  const bool energy = c.fracture.criterion == FailureCriterionKind::energy_release_rate;
+  if (energy && !c.fracture.fracture_toughness_Pa_sqrt_m)
+    m.fail("fracture.fracture_toughness", "is required with criterion: energy_release_rate (K_IC at crack tips)");
+  for (const char* key : {"fracture_toughness", "mode2_toughness"})
+    if (!energy && m.present(std::string("fracture.") + key))
+      m.fail(std::string("fracture.") + key, "is only used with criterion: energy_release_rate");
+}
+
 void check_intact_stiffness(const CaseConfig& c, const MergedChecker& m) {
   const double ratio = c.contact.intact_stiffness_ratio;
   if (!c.contact.two_tier || ratio == 1.0) return;
@@ -424,6 +433,9 @@ const std::vector<CrossCheck>& cross_checks() {
        check_fluid_used},
       {"Probe names are distinct.", check_probe_names},
       {"`numerics.min_width_tip` <= `numerics.min_width_main`.", check_min_widths},
+      {"`fracture.fracture_toughness` is required with `fracture.criterion: energy_release_rate`; it and "
+       "`fracture.mode2_toughness` are only used with it.",
+       check_fracture_criterion},
       {"`breakable_patterns` need `mesh.type: structured`; diagonal lines (`plus_45`, "
        "`minus_45`) need `mesh.split: four`.",
        check_pattern_mesh},

@@ -285,6 +285,18 @@ struct NumericsConfig {
   int max_step_cuts = 4;                ///< a failed step is retried with dt halved this often
 };
 
+/// Which rule fails an intact joint (`fracture.criterion`).
+enum class FailureCriterionKind { strength, energy_release_rate };
+
+/// How intact joints fail: the seed's strength rule everywhere (seed 2.3), or, at crack
+/// tips, a toughness criterion on the energy release rates computed from the solution by
+/// virtual crack closure (docs/formulation.md section 5), the strength rule elsewhere.
+struct FractureCriterionConfig {
+  FailureCriterionKind criterion = FailureCriterionKind::strength;
+  std::optional<double> fracture_toughness_Pa_sqrt_m;  ///< K_IC; required with energy_release_rate
+  std::optional<double> mode2_toughness_Pa_sqrt_m;     ///< K_IIC; unset: K_IC
+};
+
 struct TimeConfig {
   double dt_s = 1.0;
   double end_time_s = 1.0;
@@ -345,6 +357,7 @@ struct CaseConfig {
   std::vector<InjectionConfig> injections;
   std::vector<ProbeConfig> probes;
   NumericsConfig numerics;
+  FractureCriterionConfig fracture;
   TimeConfig time;
   OutputConfig output;
   std::optional<EnsembleConfig> ensemble;  ///< read by `hfdda ensemble` only

@@ -486,6 +486,31 @@ const Table<NumericsConfig>& numerics_table() {
   return table;
 }
 
+const Table<FractureCriterionConfig>& fracture_criterion_table() {
+  static const Table<FractureCriterionConfig> table{
+      "`fracture`",
+      "How intact joints fail. `strength`: the seed's rule everywhere (tension N > T0 Lc, seed 2.3; "
+      "`joints.fracture_toughness` maps K_IC to T0 by eq. 4.13). `energy_release_rate`: a joint still bonded "
+      "at a crack tip (a point where a broken joint ends) fails when G_I / G_IC + G_II / G_IIC >= 1, with G_I "
+      "and G_II from the contact forces of the joint ahead and the opening and slip of the broken joint behind "
+      "by virtual crack closure, G_C = K_C^2 (1 - nu^2) / E; the joint that fails is the breakable one nearest "
+      "the direction of maximum hoop stress. Bonds away from crack tips (an uncracked body, crack faces) keep "
+      "the strength rule (T0, C0), and a failure in tension opens its whole joint. docs/formulation.md section 5.",
+      {choice({"criterion", "", "§2.3 (strength); none (HFDDA) for energy_release_rate",
+               "strength or energy_release_rate"},
+              &FractureCriterionConfig::criterion,
+              Choices<FailureCriterionKind>{{"strength", FailureCriterionKind::strength},
+                                            {"energy_release_rate", FailureCriterionKind::energy_release_rate}}),
+       optional_number({"fracture_toughness", "Pa m^0.5", "§4.5: K_IC = 0.886 and 4.43 MPa m^0.5 (erratum 7)",
+                        "energy_release_rate: Mode I toughness K_IC at crack tips"},
+                       &FractureCriterionConfig::fracture_toughness_Pa_sqrt_m, positive_up_to(kMaxStrength),
+                       "none; required with energy_release_rate"),
+       optional_number({"mode2_toughness", "Pa m^0.5", "", "energy_release_rate: Mode II toughness K_IIC"},
+                       &FractureCriterionConfig::mode2_toughness_Pa_sqrt_m, positive_up_to(kMaxStrength),
+                       "fracture_toughness")}};
+  return table;
+}
+
 const Table<TimeConfig>& time_table() {
   static const Table<TimeConfig> table{
       "`time`",
@@ -596,6 +621,8 @@ const Table<CaseConfig>& case_table() {
                &CaseConfig::contact, &contact_table),
        section({"numerics", "", "§2.1, §2.3, §2.4", "iterations and tolerances"},
                &CaseConfig::numerics, &numerics_table),
+       section({"fracture", "", "§2.3", "failure criterion of intact joints"}, &CaseConfig::fracture,
+               &fracture_criterion_table),
        section({"time", "", "Table 3.1: time step", "time stepping"}, &CaseConfig::time,
                &time_table),
        section({"output", "", "", "what is written"}, &CaseConfig::output, &output_table),

@@ -18,7 +18,7 @@
 
 namespace hfdda::simulation {
 
-constexpr std::uint32_t kCheckpointVersion = 2;  // 2: load ramp keeps the contact states of its last level
+constexpr std::uint32_t kCheckpointVersion = 3;  // 2: load ramp keeps the contact states of its last level; 3: and its crack tips
 
 /// Where the run stands after a committed step, besides the model's state.
 struct RunProgress {

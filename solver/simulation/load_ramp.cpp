@@ -36,11 +36,13 @@ bool belongs_to(const std::string& fracture_name, const std::vector<std::string>
 
 LoadRamp::LoadRamp(const io::CaseConfig& config, const dda::BlockSystem& system,
                    const std::vector<int>& fracture_of_joint, const std::vector<std::string>& fracture_names,
-                   const coupling::BondList& bonds, bool shear_failure_of_intact_joints)
+                   const coupling::BondList& bonds, const fracture::FractureRules& rules)
     : config_(*config.load_ramp),
       bonds_(bonds),
       dt_s_(config.time.dt_s),
-      shear_failure_(shear_failure_of_intact_joints),
+      shear_failure_(rules.shear_failure_of_intact_joints),
+      criterion_(rules.criterion),
+      toughness_(rules.toughness),
       uniform_(config.load_ramp->history.empty()) {
   if (uniform_) {
     const double start = config_.start_Pa.value_or(0.0);
@@ -76,12 +78,22 @@ double LoadRamp::next_level() {
   return current_level_;
 }
 
-std::vector<double> LoadRamp::margins(const dda::BlockSystem& system) const {
+std::vector<double> LoadRamp::margins(const dda::BlockSystem& system, std::vector<fracture::CrackTip>& tips) const {
   const auto& contacts = system.contacts();
+  std::vector<char> at_tip;
+  tips.clear();
+  if (criterion_ == fracture::FailureCriterion::energy_release_rate) {
+    std::vector<coupling::CrackTipState> states;
+    bonds_.crack_tips().find(system, coupling::CrackTips::committed_tractions(system), Eigen::VectorXd(), states,
+                             at_tip);
+    for (const auto& t : states)
+      if (t.failing_joint >= 0) tips.push_back(t.tip);
+  }
   std::vector<double> m;
   m.reserve(bond_contacts_.size());
   for (int ci : bond_contacts_) {
-    if (!contacts[ci].bonded) {  // broken since: no limit left to reach
+    // Broken since, or left to a crack tip's criterion: no strength limit to reach.
+    if (!contacts[ci].bonded || (!at_tip.empty() && at_tip[ci])) {
       m.push_back(std::numeric_limits<double>::infinity());
       continue;
     }
@@ -100,23 +112,36 @@ std::vector<std::uint8_t> LoadRamp::contact_states(const dda::BlockSystem& syste
   return states;
 }
 
+double LoadRamp::tips_critical_level(const std::vector<fracture::CrackTip>& now) const {
+  double level = std::numeric_limits<double>::infinity();
+  if (now.size() != tips_.size()) return level;
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    if (now[i].joint != tips_[i].joint || now[i].behind_joint != tips_[i].behind_joint) return level;
+    level = std::min(level, fracture::level_at_critical_ratio(margins_level_, tips_[i], current_level_, now[i], toughness_));
+  }
+  return level;
+}
+
 void LoadRamp::try_jump(const dda::BlockSystem& system) {
-  std::vector<double> now = margins(system);
+  std::vector<fracture::CrackTip> tips;
+  std::vector<double> now = margins(system, tips);
   std::vector<std::uint8_t> states = contact_states(system);
   // Two levels predict the next failure only if no contact changed state between them:
   // a contact that opened or started to slide (crack faces in shear) makes the response
   // non-linear and path-dependent, and a jump over it can land past the failure.
   if (!have_margins_ || current_level_ == margins_level_ || states != states_at_margins_) {
     bond_margins_ = std::move(now);
+    tips_ = std::move(tips);
     states_at_margins_ = std::move(states);
     margins_level_ = current_level_;
     have_margins_ = true;
     return;
   }
-  double predicted = std::numeric_limits<double>::infinity();
+  double predicted = tips_critical_level(tips);
   for (std::size_t i = 0; i < now.size(); ++i)
     predicted = std::min(predicted, fracture::level_at_zero_margin(margins_level_, bond_margins_[i], current_level_, now[i]));
   bond_margins_ = std::move(now);  // the next prediction may start from this level
+  tips_ = std::move(tips);
   states_at_margins_ = std::move(states);
   margins_level_ = current_level_;
   if (!std::isfinite(predicted)) return;
@@ -201,6 +226,7 @@ void LoadRamp::save_state(BinaryWriter& out) const {
   out.put(current_level_);
   out.put(jumped_this_step_);
   out.put_vector(bond_margins_);
+  out.put_vector(tips_);
   out.put(margins_level_);
   out.put(have_margins_);
   out.put_vector(states_at_margins_);
@@ -218,6 +244,7 @@ void LoadRamp::restore_state(BinaryReader& in) {
   in.get(current_level_);
   in.get(jumped_this_step_);
   in.get_vector(bond_margins_);
+  in.get_vector(tips_);
   in.get(margins_level_);
   in.get(have_margins_);
   in.get_vector(states_at_margins_);

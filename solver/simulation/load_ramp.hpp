@@ -10,6 +10,10 @@
 // below the prediction; every level from there on is solved, so each failure level has
 // the resolution of one increment, as in the seed's ramps. If a bond fails at a level
 // reached by a jump itself, the prediction was not safe there and the outcome says so.
+// With the energy criterion a tip's energy release rate is quadratic in the level
+// (forces and openings each linear), so its level comes from the root of a quadratic
+// (fracture::level_at_critical_ratio): sqrt(G_c / G) times the level under a load
+// proportional to it.
 
 #include <limits>
 #include <string>
@@ -18,6 +22,7 @@
 
 #include "coupling/bond_list.hpp"
 #include "dda/block_system.hpp"
+#include "fracture/fracture_criteria.hpp"
 #include "io/case_config.hpp"
 
 namespace hfdda {
@@ -51,10 +56,11 @@ class LoadRamp {
  public:
   /// `fracture_of_joint`: per joint, index into `fracture_names` (-1: none), the model's
   /// fractures (written, then generated).
-  /// `bonds`: the bond list of the model's coupled step (must outlive the ramp).
+  /// `bonds`: the bond list of the model's coupled step (must outlive the ramp);
+  /// `rules`: the failure rules of that step (the criterion, shear failure of intact joints).
   LoadRamp(const io::CaseConfig& config, const dda::BlockSystem& system, const std::vector<int>& fracture_of_joint,
            const std::vector<std::string>& fracture_names, const coupling::BondList& bonds,
-           bool shear_failure_of_intact_joints);
+           const fracture::FractureRules& rules);
 
   /// True while there is a level to solve and the stop condition is not met.
   bool has_next() const;
@@ -73,7 +79,12 @@ class LoadRamp {
   void restore_state(BinaryReader& in);
 
  private:
-  std::vector<double> margins(const dda::BlockSystem& system) const;
+  /// The margin of every bond of bond_contacts_ (+infinity once broken, or while a
+  /// crack tip governs it) and, with the energy criterion, the crack tips.
+  std::vector<double> margins(const dda::BlockSystem& system, std::vector<fracture::CrackTip>& tips) const;
+  /// The lowest level at which a tip's mixed-mode ratio reaches 1, from the tips at the
+  /// last level and now (+infinity: none, or the tips are not the same joints).
+  double tips_critical_level(const std::vector<fracture::CrackTip>& now) const;
   /// State of every contact (open, locked, sliding; bonded; vertex-vertex active).
   static std::vector<std::uint8_t> contact_states(const dda::BlockSystem& system);
   void try_jump(const dda::BlockSystem& system);
@@ -83,6 +94,8 @@ class LoadRamp {
   const coupling::BondList& bonds_;
   double dt_s_;
   bool shear_failure_;
+  fracture::FailureCriterion criterion_;
+  fracture::Toughness toughness_;
   bool uniform_;
   long long n_levels_ = 0;   // uniform: levels start + k increment, k < n_levels_; history: steps
   long long next_index_ = 0;
@@ -90,6 +103,7 @@ class LoadRamp {
   bool jumped_this_step_ = false;
   std::vector<int> bond_contacts_;       // intact breakable bonds at the start
   std::vector<double> bond_margins_;     // their margins at the last level (no failure yet)
+  std::vector<fracture::CrackTip> tips_;  // energy criterion: the crack tips at that level
   double margins_level_ = 0.0;
   bool have_margins_ = false;
   // The contact states at that level: a prediction needs the same states at both levels

@@ -540,6 +540,11 @@ fracture::FractureRules fracture_rules(const io::CaseConfig& c) {
   r.tie_tolerance = c.numerics.tie_tolerance;
   r.shear_failure_of_intact_joints = c.numerics.shear_failure_of_intact_joints;
   r.failure_needs_open_neighbour_and_fluid = !c.load_ramp.has_value();
+  if (c.fracture.criterion == io::FailureCriterionKind::energy_release_rate) {
+    r.criterion = fracture::FailureCriterion::energy_release_rate;
+    r.toughness.mode1_Pa_sqrt_m = *c.fracture.fracture_toughness_Pa_sqrt_m;
+    r.toughness.mode2_Pa_sqrt_m = c.fracture.mode2_toughness_Pa_sqrt_m.value_or(r.toughness.mode1_Pa_sqrt_m);
+  }
   return r;
 }
 
@@ -606,7 +611,7 @@ Model build_model(const io::CaseConfig& case_config, ParameterSampler& sampler) 
     std::vector<std::string> names;
     for (const ModelFracture& f : model.fractures) names.push_back(f.name);
     model.ramp = std::make_unique<LoadRamp>(c, system, model.fracture_of_joint, names, model.step->bonds(),
-                                            c.numerics.shear_failure_of_intact_joints);
+                                            fracture_rules(c));
   }
   model.mesh_seconds_ms = static_cast<int>(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

@@ -130,6 +130,27 @@ TEST(CaseFileErrors, EndTimeBelowDt) {
   expect_text_error("title: x\ntime: {dt: 5}\n", 2, "time.dt", "must be <= time.end_time");
 }
 
+TEST(CaseFileErrors, FractureCriterionAndItsToughness) {
+  expect_text_error("fracture:\n  criterion: toughness\n", 2, "fracture.criterion",
+                    "must be one of: strength, energy_release_rate (got 'toughness')");
+  expect_text_error("fracture: {criterion: energy_release_rate}\n", 1, "fracture.fracture_toughness",
+                    "is required with criterion: energy_release_rate");
+  expect_text_error("fracture:\n  fracture_toughness: 1.0e6\n", 2, "fracture.fracture_toughness",
+                    "is only used with criterion: energy_release_rate");
+  expect_text_error("fracture: {criterion: strength,\n  mode2_toughness: 1.0e6}\n", 2, "fracture.mode2_toughness",
+                    "is only used with criterion: energy_release_rate");
+  expect_text_error("fracture: {criterion: energy_release_rate, fracture_toughness: 0}\n", 1,
+                    "fracture.fracture_toughness", "must be in (0, 1e13]");
+  expect_text_error("fracture: {criterion: energy_release_rate, fracture_toughness: 1e6, toughness2: 1e6}\n", 1,
+                    "fracture.toughness2", "mode2_toughness");
+  const CaseConfig c =
+      load_case_text("fracture: {criterion: energy_release_rate, fracture_toughness: 0.886e6}\n", "erc.yaml");
+  EXPECT_EQ(c.fracture.criterion, FailureCriterionKind::energy_release_rate);
+  EXPECT_EQ(c.fracture.fracture_toughness_Pa_sqrt_m, std::optional<double>(0.886e6));
+  EXPECT_FALSE(c.fracture.mode2_toughness_Pa_sqrt_m.has_value());
+  EXPECT_EQ(load_case_text("title: default\n", "default.yaml").fracture.criterion, FailureCriterionKind::strength);
+}
+
 TEST(CaseFileErrors, BadEnumListsAllowedValues) {
   expect_text_error("mesh:\n  type: voronoi\n", 2, "mesh.type",
                     "must be one of: structured, delaunay (got 'voronoi')");
