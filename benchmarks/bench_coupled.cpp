@@ -18,6 +18,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <numbers>
 #include <string>
 
 #include "io/case_config.hpp"
@@ -89,6 +91,31 @@ void BM_CoupledSymmetricFree(benchmark::State& state) {
   run_case(state, io::load_case_text(kSymmetricFree, "symmetric_free.yaml"), 0.0);
 }
 
+// The two fracture criteria on the same runs (docs/formulation.md section 5), range(0):
+// 0 the seed's strength rule, 1 the energy release rate at crack tips with the toughness
+// the strength stands for, K_IC = T0 sqrt(pi L / 2) (seed eq. 4.13). Target: the energy
+// criterion costs at most 20 % more time per step.
+io::CaseConfig with_criterion(io::CaseConfig config, bool energy, double toughness_Pa_sqrt_m) {
+  if (energy) {
+    config.fracture.criterion = io::FailureCriterionKind::energy_release_rate;
+    config.fracture.fracture_toughness_Pa_sqrt_m = toughness_Pa_sqrt_m;
+  }
+  return config;
+}
+
+void BM_CriterionSymmetricFree(benchmark::State& state) {
+  // T0 = 1 MPa on the 2 m joints of the structured mesh.
+  const double toughness = 1.0e6 * std::sqrt(std::numbers::pi * 2.0 / 2.0);
+  run_case(state, with_criterion(io::load_case_text(kSymmetricFree, "symmetric_free.yaml"), state.range(0) == 1, toughness), 0.0);
+}
+
+void BM_CriterionKgdToughness(benchmark::State& state) {
+  // verification/kgd_toughness/l1_k0886.yaml: K_IC = 0.886 MPa m^0.5 on L = 1 m joints.
+  const io::CaseConfig config =
+      io::load_case_file(std::string(HFDDA_SOURCE_DIR) + "/verification/kgd_toughness/l1_k0886.yaml");
+  run_case(state, with_criterion(config, state.range(0) == 1, 0.886e6), 0.0);
+}
+
 constexpr int kKgdWarmUpSteps = 1, kKgdTimedSteps = 3;
 
 // range(0): dx in cm (200, 100, 50); range(1): threads.
@@ -135,6 +162,8 @@ int main(int argc, char** argv) {
   };
   long_benchmark("BM_CoupledKgdDx05", BM_CoupledKgdDx05);
   long_benchmark("BM_CoupledSymmetricFree", BM_CoupledSymmetricFree);
+  long_benchmark("BM_CriterionSymmetricFree", BM_CriterionSymmetricFree)->ArgName("energy")->DenseRange(0, 1);
+  long_benchmark("BM_CriterionKgdToughness", BM_CriterionKgdToughness)->ArgName("energy")->DenseRange(0, 1);
   long_benchmark("BM_CoupledKgdStep", BM_CoupledKgdStep)
       ->ArgNames({"dx_cm", "threads"})->ArgsProduct({{200, 100, 50}, {1, 2}})->UseRealTime();
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
