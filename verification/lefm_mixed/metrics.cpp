@@ -38,6 +38,7 @@ struct Setup {
   double beta_rad = kNaN;
   double increment_Pa = kNaN;
   analytical::StressPattern far;
+  double toughness_Pa_sqrt_m = kNaN;  ///< K_IC with fracture.criterion: energy_release_rate, NaN otherwise
 };
 
 /// The far-field pattern must be a uniaxial tension at angle beta to the crack (seed eq.
@@ -62,6 +63,10 @@ Setup setup_of(const io::CaseConfig& c) {
   s.cell_size_m = c.mesh.cell_size_m;
   s.tensile_strength_Pa = c.joints.tensile_strength_Pa;
   s.increment_Pa = r.increment_Pa.value_or(kNaN);
+  if (c.fracture.criterion == io::FailureCriterionKind::energy_release_rate) {
+    if (c.fracture.mode2_toughness_Pa_sqrt_m) throw std::runtime_error("the study takes K_IIC = K_IC");
+    s.toughness_Pa_sqrt_m = c.fracture.fracture_toughness_Pa_sqrt_m.value_or(kNaN);
+  }
   int cracks = 0;
   for (const io::FractureConfig& f : c.fractures) {
     if (f.name != "crack") continue;
@@ -179,6 +184,13 @@ Metrics variant_metrics(const VariantRun& r) {
                          : kNaN;
   const double eq430 =
       crack ? analytical::mixed_mode_failure_stress_eq430(s.tensile_strength_Pa, s.cell_size_m, a, s.beta_rad) : kNaN;
+  // Toughness criterion: K_I = s cos^2(beta) sqrt(pi a), K_II = s sin(beta) cos(beta) sqrt(pi a),
+  // and K_I^2 + K_II^2 = K_IC^2 (K_IIC = K_IC) gives s = K_IC / (cos(beta) sqrt(pi a)).
+  const double k_ic = s.toughness_Pa_sqrt_m;
+  const double lefm = crack && std::isfinite(k_ic) ? k_ic / (std::cos(s.beta_rad) * std::sqrt(std::numbers::pi * a)) : kNaN;
+  // Seed eq. 4.13 with the grid-line joint length: the same rock under both criteria.
+  const double toughness_mismatch =
+      std::abs(k_ic / (s.tensile_strength_Pa * std::sqrt(std::numbers::pi * s.cell_size_m / 2.0)) - 1.0);
   // Maximum hoop stress kink angle for this loading: K_II / K_I = sxy / syy.
   const double hoop_deg = have_setup ? analytical::max_hoop_stress_kink_angle(s.far.syy, s.far.sxy) * kDeg : kNaN;
 
@@ -219,10 +231,18 @@ Metrics variant_metrics(const VariantRun& r) {
                  {"kink_on_minus45_diagonals", on_diagonals},
                  {"hoop_stress_angle_deg", hoop_deg},
                  {"failed_joints", double(broken.full)},
-                 {"failed_minus45_fraction", minus45_fraction}};
+                 {"failed_minus45_fraction", minus45_fraction},
+                 {"K_IC_Pa_sqrt_m", k_ic},
+                 {"lefm_Pa", lefm},
+                 {"error_lefm", rel(lefm)},
+                 {"abs_error_lefm", std::abs(rel(lefm))},
+                 {"toughness_mismatch", toughness_mismatch}};
 
   nlohmann::json& m = out.json;
   m["half_length_m"] = a;
+  m["K_IC_Pa_sqrt_m"] = finite_or_null(k_ic);
+  m["lefm_Pa"] = finite_or_null(lefm);
+  m["error_lefm"] = finite_or_null(rel(lefm));
   m["joint_length_L_m"] = finite_or_null(s.cell_size_m);
   m["tensile_strength_Pa"] = finite_or_null(s.tensile_strength_Pa);
   m["beta_deg"] = finite_or_null(s.beta_rad * kDeg);

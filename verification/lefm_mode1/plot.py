@@ -6,7 +6,9 @@ Usage: /usr/bin/python3 plot.py RESULT_DIR
 One panel per tensile strength T0, as in the seed: the far-field tension at complete
 failure against the initial half-length a, for L = 0.5 and 1 m, with the exact-field
 relation T0 sqrt(L / (2a + L)) (erratum 6) and the seed's eq. 4.14, T0 sqrt(L / 2a).
-Open markers: the level at which the first whole joint failed.
+Open markers: the level at which the first whole joint failed. A last panel, when the
+study ran it: the toughness criterion at crack tips (fracture.criterion:
+energy_release_rate) against the LEFM relation K_IC / sqrt(pi a), for each K_IC and L.
 """
 import csv
 import os
@@ -19,11 +21,46 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
+def plot_toughness(ax, rows):
+    """Failure stress with the toughness criterion against K_IC / sqrt(pi a)."""
+    groups = sorted({(float(r["K_IC_Pa_sqrt_m"]), float(r["L_m"])) for r in rows})
+    colours = ["tab:blue", "tab:red", "tab:green", "tab:purple"]
+    for i, (k, length) in enumerate(groups):
+        sel = sorted((r for r in rows if float(r["K_IC_Pa_sqrt_m"]) == k and float(r["L_m"]) == length),
+                     key=lambda r: float(r["a_m"]))
+        a = np.array([float(r["a_m"]) for r in sel])
+        fail = np.array([float(r["failure_Pa"]) if r["failure_Pa"] not in ("nan", "") else np.nan for r in sel])
+        marker = "o" if length == 0.5 else "s"
+        ax.plot(a, fail / 1e6, marker, mfc="none" if length == 1.0 else None, color=colours[i % 4],
+                label=f"DDA, K_IC = {k / 1e6:.3f} MPa m^0.5, L = {length} m")
+    for k in sorted({g[0] for g in groups}):
+        aa = np.linspace(0.5, 5.0, 200)
+        ax.plot(aa, k / np.sqrt(np.pi * aa) / 1e6, "-", color="0.4", lw=0.8)
+        ax.annotate(f"K_IC / sqrt(pi a), {k / 1e6:.3f}", (aa[-1], k / np.sqrt(np.pi * aa[-1]) / 1e6),
+                    fontsize=7, ha="right", va="bottom")
+    ax.set_title("toughness criterion (energy release rate)")
+    ax.set_xlabel("initial half-length a [m]")
+    ax.set_ylabel("far-field tension at failure [MPa]")
+    ax.set_xlim(0, 5.5)
+    ax.set_ylim(0, 1.0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+
+
 def main(result_dir):
     with open(os.path.join(result_dir, "failure_stress.csv")) as f:
-        rows = list(csv.DictReader(f))
+        all_rows = list(csv.DictReader(f))
+
+    def energy(r):
+        return r.get("K_IC_Pa_sqrt_m", "nan") not in ("nan", "")
+
+    rows = [r for r in all_rows if not energy(r)]
+    tough = [r for r in all_rows if energy(r)]
     strengths = sorted({float(r["T0_Pa"]) for r in rows})
-    fig, axes = plt.subplots(1, len(strengths), figsize=(6 * len(strengths), 4.5), squeeze=False)
+    panels = len(strengths) + (1 if tough else 0)
+    fig, axes = plt.subplots(1, panels, figsize=(6 * panels, 4.5), squeeze=False)
+    if tough:
+        plot_toughness(axes[0][-1], tough)
     for ax, t0 in zip(axes[0], strengths):
         for length, colour in ((0.5, "tab:blue"), (1.0, "tab:red")):
             sel = sorted((r for r in rows if float(r["T0_Pa"]) == t0 and float(r["L_m"]) == length),

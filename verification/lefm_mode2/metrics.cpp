@@ -4,7 +4,10 @@
 // exact-field relation tau = C0 sqrt(L / (2a + L)) (the shear stress
 // tau x / sqrt(x^2 - a^2) on the crack line integrated over the joint [a, a + L] and set
 // equal to C0 L); the levels of the first bond failure and of the first whole-joint
-// failure. Variants, thresholds and checks are in study.yaml. Writes failure_stress.csv
+// failure. With the toughness criterion at crack tips (fracture.criterion:
+// energy_release_rate) the reference is the LEFM relation tau = K_IIC / sqrt(pi a)
+// (K_II = tau sqrt(pi a)), and the same K_IIC on L = 0.5 and 1 m are compared with each
+// other (study metrics objectivity_a2/a3/a5). Variants, thresholds and checks are in study.yaml. Writes failure_stress.csv
 // (one row per variant) for plot.py. Stresses in Pa, lengths in m.
 
 #include <algorithm>
@@ -26,7 +29,10 @@ struct Setup {
   double half_length_m = 0.0;  ///< a: half-length of the initially open crack (0: none)
   double increment_Pa = kNaN;  ///< ramp increment
   Vec2 path_from{0, 0}, path_to{0, 0};
+  double mode2_toughness_Pa_sqrt_m = kNaN;  ///< K_IIC with the toughness criterion, NaN otherwise
 };
+
+constexpr double kPi = 3.14159265358979323846;
 
 /// The breakable joints of the path: their lengths and cohesion.
 struct Path {
@@ -46,6 +52,10 @@ Setup setup_of(const io::CaseConfig& c) {
   if (c.fluid) throw std::runtime_error("the case has no fluid");
   Setup s;
   s.increment_Pa = *ramp.increment_Pa;
+  if (c.fracture.criterion == io::FailureCriterionKind::energy_release_rate) {
+    if (!c.fracture.fracture_toughness_Pa_sqrt_m) throw std::runtime_error("the toughness criterion needs fracture_toughness");
+    s.mode2_toughness_Pa_sqrt_m = c.fracture.mode2_toughness_Pa_sqrt_m.value_or(*c.fracture.fracture_toughness_Pa_sqrt_m);
+  }
   bool have_path = false;
   for (const io::FractureConfig& f : c.fractures) {
     if (f.name == "path") {
@@ -80,6 +90,8 @@ Path path_of(const mesh::Mesh& mesh, const Setup& s) {
 double eq_4_24(double c0, double l, double a) { return a > 0.0 ? c0 * std::sqrt(l / (2.0 * a)) : kNaN; }
 /// The exact-field relation: C0 at a = 0, eq. 4.24 for a >> L.
 double exact_field(double c0, double l, double a) { return c0 * std::sqrt(l / (2.0 * a + l)); }
+/// LEFM: K_II = tau sqrt(pi a) reaches K_IIC.
+double lefm(double k_iic, double a) { return a > 0.0 ? k_iic / std::sqrt(kPi * a) : kNaN; }
 
 Metrics variant_metrics(const VariantRun& r) {
   Metrics out;
@@ -97,6 +109,7 @@ Metrics variant_metrics(const VariantRun& r) {
   const double stop = o.stop_reached ? o.stop_Pa : kNaN;
   const double tau_424 = eq_4_24(c0, l, a), tau_exact = exact_field(c0, l, a);
   const double err_424 = (stop - tau_424) / tau_424, err_exact = (stop - tau_exact) / tau_exact;
+  const double k_iic = s.mode2_toughness_Pa_sqrt_m, tau_lefm = lefm(k_iic, a), err_lefm = (stop - tau_lefm) / tau_lefm;
   // a = 0: the path is intact in a uniform field, so it must fail at C0.
   const double a0_increments = a == 0.0 ? std::abs(stop - c0) / s.increment_Pa : kNaN;
 
@@ -117,7 +130,13 @@ Metrics variant_metrics(const VariantRun& r) {
                  {"path_length_spread", path.length_m.spread()},
                  {"path_cohesion_spread", path.cohesion_Pa.spread()},
                  {"spread_first_failure_Pa", stop - o.first_failure_Pa},
-                 {"spread_first_joint_failure_Pa", stop - o.first_joint_failure_Pa}};
+                 {"spread_first_joint_failure_Pa", stop - o.first_joint_failure_Pa},
+                 {"K_IIC_Pa_sqrt_m", k_iic},
+                 {"lefm_Pa", tau_lefm},
+                 {"error_lefm", err_lefm},
+                 {"abs_error_lefm", std::abs(err_lefm)},
+                 // seed eq. 4.13 with C0 for T0: the same rock under both criteria
+                 {"toughness_mismatch", std::abs(k_iic / (c0 * std::sqrt(kPi * l / 2.0)) - 1.0)}};
   nlohmann::json& m = out.json;
   for (const auto& [key, value] : out.numbers) m[key] = finite_or_null(value);
   m["path_joints"] = path.joints;
@@ -131,6 +150,10 @@ Metrics variant_metrics(const VariantRun& r) {
                 "a %.2g L %.2g C0 %.3g: stop %.6g Pa (eq 4.24 %+.4f, exact %+.4f), first bond %.6g, first joint %.6g",
                 a, l, c0, stop, err_424, err_exact, o.first_failure_Pa, o.first_joint_failure_Pa);
   out.summary = line;
+  if (std::isfinite(k_iic)) {
+    std::snprintf(line, sizeof line, "; LEFM %.6g Pa (%+.4f)", tau_lefm, err_lefm);
+    out.summary += line;
+  }
   return out;
 }
 
@@ -138,19 +161,32 @@ Metrics variant_metrics(const VariantRun& r) {
 void study_metrics(StudyOutcome& st) {
   std::string text =
       "variant,a_m,joint_length_m,cohesion_Pa,failure_stress_Pa,first_failure_Pa,first_joint_failure_Pa,"
-      "eq_4_24_Pa,exact_field_Pa\n";
+      "eq_4_24_Pa,exact_field_Pa,K_IIC_Pa_sqrt_m,lefm_Pa\n";
   for (const VariantOutcome& v : st.variants) {
     const auto& n = v.metrics.numbers;
     auto get = [&](const char* key) { return n.count(key) ? n.at(key) : kNaN; };
     text += v.variant().name;
     for (const char* key : {"a_m", "joint_length_m", "cohesion_Pa", "failure_stress_Pa", "first_failure_Pa",
-                            "first_joint_failure_Pa", "eq_4_24_Pa", "exact_field_Pa"}) {
+                            "first_joint_failure_Pa", "eq_4_24_Pa", "exact_field_Pa", "K_IIC_Pa_sqrt_m", "lefm_Pa"}) {
       text += ',';
       text += number(get(key));
     }
     text += "\n";
   }
   st.metrics.files["failure_stress.csv"] = text;
+  // Mesh objectivity of the toughness criterion: K_IIC = 0.886 MPa m^0.5 on L = 1 m
+  // (C0 = 0.707 MPa) against L = 0.5 m (C0 = 1 MPa) at the same a.
+  for (const int a : {2, 3, 5}) {
+    const std::string key = "objectivity_a" + std::to_string(a);
+    const VariantOutcome* fine = st.find("l05_c1_a" + std::to_string(a) + "_e");
+    const VariantOutcome* coarse = st.find("l1_c07_a" + std::to_string(a) + "_e");
+    const double ratio = fine && coarse ? coarse->metrics.numbers.at("failure_stress_Pa") /
+                                              fine->metrics.numbers.at("failure_stress_Pa")
+                                        : kNaN;
+    st.metrics.numbers[key] = std::abs(ratio - 1.0);
+    st.metrics.json[key] = finite_or_null(std::abs(ratio - 1.0));
+    st.metrics.json["objectivity_ratio_a" + std::to_string(a)] = finite_or_null(ratio);
+  }
 }
 
 }  // namespace

@@ -6,7 +6,8 @@ Usage: /usr/bin/python3 plot.py RESULT_DIR
 Far-field shear at failure against the initial crack half-length a, one panel per
 cohesion C0 (A: 1 MPa, B: 5 MPa), both joint lengths L: the DDA runs (markers), eq. 4.24
 with N = 0, C0 sqrt(L / 2a) (dashed), and the exact-field relation C0 sqrt(L / (2a + L))
-(solid). The full tier writes lefm_mode2.png, the quick tier lefm_mode2_quick.png.
+(solid). A last panel, when the study ran it: the toughness criterion at crack tips
+(fracture.criterion: energy_release_rate) against K_IIC / sqrt(pi a). The full tier writes lefm_mode2.png, the quick tier lefm_mode2_quick.png.
 """
 import json
 import os
@@ -21,13 +22,44 @@ import numpy as np  # noqa: E402
 STYLE = {0.5: ("o", "tab:blue"), 1.0: ("s", "tab:red")}
 
 
+def plot_toughness(ax, rows):
+    """Failure stress with the toughness criterion against K_IIC / sqrt(pi a)."""
+    groups = sorted(set((float(k), float(length)) for k, length in zip(rows["K_IIC_Pa_sqrt_m"], rows["joint_length_m"])
+                        if np.isfinite(length)))
+    colours = ["tab:blue", "tab:red", "tab:green", "tab:purple"]
+    for i, (k, length) in enumerate(groups):
+        sel = rows[(rows["K_IIC_Pa_sqrt_m"] == k) & (rows["joint_length_m"] == length)]
+        sel = sel[np.argsort(sel["a_m"])]
+        marker = "o" if length == 0.5 else "s"
+        ax.plot(sel["a_m"], sel["failure_stress_Pa"] / 1e6, marker, color=colours[i % 4], ms=7,
+                mfc="none" if length == 1.0 else None, label=f"DDA, K_IIC = {k / 1e6:.3f} MPa m^0.5, L = {length:g} m")
+    for k in sorted(set(g[0] for g in groups)):
+        a = np.linspace(0.5, 5.0, 200)
+        ax.plot(a, k / np.sqrt(np.pi * a) / 1e6, "-", color="0.4", lw=0.8)
+        ax.annotate(f"K_IIC / sqrt(pi a), {k / 1e6:.3f}", (a[-1], k / np.sqrt(np.pi * a[-1]) / 1e6), fontsize=7,
+                    ha="right", va="bottom")
+    ax.set_xlim(0.0, 5.5)
+    ax.set_ylim(0.0, 1.0)
+    ax.set_xlabel("initial crack half-length a [m]")
+    ax.set_ylabel("far-field shear at failure [MPa]")
+    ax.set_title("toughness criterion (energy release rate)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+
+
 def main(result_dir):
     with open(os.path.join(result_dir, "result.json")) as f:
         tier = json.load(f).get("tier", "full")
     data = np.atleast_1d(np.genfromtxt(os.path.join(result_dir, "failure_stress.csv"), delimiter=",",
                                        names=True, dtype=None, encoding="utf-8"))
+    tough = data[np.isfinite(data["K_IIC_Pa_sqrt_m"])] if "K_IIC_Pa_sqrt_m" in data.dtype.names else data[:0]
+    if "K_IIC_Pa_sqrt_m" in data.dtype.names:
+        data = data[~np.isfinite(data["K_IIC_Pa_sqrt_m"])]
     cohesions = sorted(set(float(c) for c in data["cohesion_Pa"] if np.isfinite(c)))
-    fig, axes = plt.subplots(1, max(1, len(cohesions)), figsize=(6.0 * max(1, len(cohesions)), 4.8), squeeze=False)
+    panels = max(1, len(cohesions)) + (1 if len(tough) else 0)
+    fig, axes = plt.subplots(1, panels, figsize=(6.0 * panels, 4.8), squeeze=False)
+    if len(tough):
+        plot_toughness(axes[0][-1], tough)
     for panel, (ax, c0) in enumerate(zip(axes[0], cohesions)):
         for length in sorted(set(float(v) for v in data["joint_length_m"] if np.isfinite(v))):
             rows = data[(data["cohesion_Pa"] == c0) & (data["joint_length_m"] == length)]
