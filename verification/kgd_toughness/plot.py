@@ -29,6 +29,12 @@ FIGURES = {
          [("l05_t1", "o"), ("l1_t0707", "s"), ("l1_k0886", "x")]),
         ("kgd_toughness_k443.png", "KGD toughness storage, K_IC = 4.43 MPa m^0.5 (seed Fig. 4.14, erratum 7)",
          [("l05_t5", "o"), ("l1_t3536", "s"), ("l1_k443", "x")]),
+        ("kgd_toughness_energy_t1.png",
+         "KGD toughness storage, toughness criterion at crack tips, K_IC = 0.886 and 1.253 MPa m^0.5",
+         [("l05_t1_energy", "o"), ("l1_k0886_energy", "x"), ("l1_t1_energy", "s"), ("l1_t1_energy_large", "^")]),
+        ("kgd_toughness_energy_t5.png",
+         "KGD toughness storage, toughness criterion at crack tips, K_IC = 4.43 and 6.27 MPa m^0.5",
+         [("l05_t5_energy", "o"), ("l1_t5_energy", "s")]),
     ],
     "quick": [
         ("kgd_toughness_quick.png", "KGD toughness storage, quick tier: L = 1 m, T0 = 1 MPa",
