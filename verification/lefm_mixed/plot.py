@@ -54,7 +54,12 @@ def failure_stress_figure(out, runs, curves):
             r = r[np.isfinite(r["stop_Pa"])]
             # beta = 30 deg on the seed's grid only (the rosette runs have figures of their own)
             r = r[np.array([not str(v).startswith("r_") for v in r["variant"]], dtype=bool)]
-            ax.plot(r["half_length_m"], r["stop_Pa"] / 1e6, "o", color="tab:red", ms=7, label="DDA")
+            tough = np.array([str(v).startswith("e_") for v in r["variant"]], dtype=bool)
+            ax.plot(r["half_length_m"][~tough], r["stop_Pa"][~tough] / 1e6, "o", color="tab:red", ms=7,
+                    label="DDA, strength rule")
+            if tough.any():
+                ax.plot(r["half_length_m"][tough], r["stop_Pa"][tough] / 1e6, "D", color="tab:purple", ms=6,
+                        label="DDA, toughness criterion (K_IC from T0, eq. 4.13)")
         ax.set_xlim(0.0, 5.5)
         ax.set_ylim(0.0, 1.6 * t0 / 1e6)
         ax.set_xlabel("crack half-length a [m]")
