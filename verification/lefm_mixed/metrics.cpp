@@ -9,7 +9,9 @@
 // and the kink: the direction of the failed joints leaving each tip, in the tip's axes
 // (x' ahead of the tip, angle counter-clockwise from x'; at the right tip x' = +x, at
 // the left tip x' = -x), where the maximum hoop stress criterion gives -43.2 degrees for
-// beta = 30 degrees. Units: Pa, m, degrees. Variants, thresholds and checks: study.yaml.
+// beta = 30 degrees, and kink_error_deg, the largest deviation of the joints failed at
+// the tips from that direction (the rosette variants at beta = 15, 45, 60 degrees, on a
+// Delaunay mesh: L is then the crack's segment_length). Units: Pa, m, degrees. Variants, thresholds and checks: study.yaml.
 // Writes failed_<variant>.csv (broken joints of the inner domain) per variant, and
 // failure_stress.csv and relations.csv (the curves of Figure 4.10) for plot.py.
 
@@ -55,8 +57,9 @@ Setup setup_of(const io::CaseConfig& c) {
   if (c.far_field.sxx_Pa != 0.0 || c.far_field.syy_Pa != 0.0 || c.far_field.sxy_Pa != 0.0)
     throw std::runtime_error("the comparison assumes no other far-field stress");
   if (c.joints.fracture_toughness_Pa_sqrt_m) throw std::runtime_error("the case gives T0, not K_IC");
-  if (c.mesh.kind != io::MeshKind::structured || c.mesh.split != mesh::CellSplit::four)
-    throw std::runtime_error("the case needs a structured mesh split into four triangles");
+  const bool grid = c.mesh.kind == io::MeshKind::structured && c.mesh.split == mesh::CellSplit::four;
+  if (!grid && c.mesh.kind != io::MeshKind::delaunay)
+    throw std::runtime_error("the case needs a structured mesh split into four triangles, or a Delaunay mesh");
   Setup s;
   s.beta_rad = std::atan2(r.sxy, r.syy);
   s.far = {r.sxx, r.syy, r.sxy};
@@ -74,8 +77,12 @@ Setup setup_of(const io::CaseConfig& c) {
     if (!f.initially_open || f.from.y() != 0.0 || f.to.y() != 0.0 || std::abs(f.from.x() + f.to.x()) > 1e-9)
       throw std::runtime_error("the fracture 'crack' is initially open, on y = 0 and centred at the origin");
     s.half_length_m = 0.5 * std::abs(f.to.x() - f.from.x());
+    // On a Delaunay mesh (the tip rosettes) L is the crack's joint length.
+    if (!grid) s.cell_size_m = f.segment_length_m;
   }
   if (cracks > 1) throw std::runtime_error("one fracture named 'crack' at most");
+  if (!grid && !(s.cell_size_m > 0.0))
+    throw std::runtime_error("on a Delaunay mesh the crack needs a segment_length: its joint length L");
   return s;
 }
 
@@ -128,6 +135,16 @@ Tip tip_of(const simulation::Model& model, const Setup& s, double ahead) {
 
 /// The one failed joint at a tip, or NaN when none or several failed there.
 double kink_deg(const Tip& t) { return t.failed.size() == 1 ? t.failed[0].angle_deg : kNaN; }
+
+/// The largest |angle - prediction| over the joints failed at the two tips, NaN when a
+/// tip has none (no kink to measure there).
+double kink_error_deg(const Tip& right, const Tip& left, double prediction_deg) {
+  if (right.failed.empty() || left.failed.empty()) return kNaN;
+  double worst = 0.0;
+  for (const Tip* t : {&right, &left})
+    for (const TipJoint& f : t->failed) worst = std::max(worst, std::abs(f.angle_deg - prediction_deg));
+  return worst;
+}
 
 /// Broken or initially open joints of the inner domain: failed_<variant>.csv.
 struct Broken {
@@ -230,6 +247,9 @@ Metrics variant_metrics(const VariantRun& r) {
                  {"kink_left_deg", kink_l},
                  {"kink_on_minus45_diagonals", on_diagonals},
                  {"hoop_stress_angle_deg", hoop_deg},
+                 {"kink_error_deg", crack ? kink_error_deg(right, left, hoop_deg) : kNaN},
+                 {"failed_at_right_tip", crack ? double(right.failed.size()) : kNaN},
+                 {"failed_at_left_tip", crack ? double(left.failed.size()) : kNaN},
                  {"failed_joints", double(broken.full)},
                  {"failed_minus45_fraction", minus45_fraction},
                  {"K_IC_Pa_sqrt_m", k_ic},
@@ -277,6 +297,7 @@ Metrics variant_metrics(const VariantRun& r) {
       "angle of the failed joint leaving the tip, from the crack direction ahead of the tip, counter-clockwise "
       "positive in the tip's axes (right tip: from +x; left tip: from -x)";
   m["hoop_stress_kink_deg"] = finite_or_null(hoop_deg);
+  m["kink_error_deg"] = finite_or_null(crack ? kink_error_deg(right, left, hoop_deg) : kNaN);
   m["failed_joints"] = {{"both_ends", broken.full}, {"one_end", broken.half}, {"minus_45_of_both_ends", broken.full_minus_45}};
 
   char line[220];

@@ -12,6 +12,10 @@ so the plot and the checks share one formula.
 lefm_mixed_tips.png (full tier: a = 3 m, T0 = 1 MPa; quick tier: lefm_mixed_tips_quick.png):
 the initial crack and the failed joints of the inner domain at the stop level, whole and
 near the tips, with the -43.2 deg maximum hoop stress direction at each tip.
+lefm_mixed_rosettes.png (full tier, when the study ran the tip-rosette variants r_b*):
+the toughness criterion at beta = 15, 45, 60 deg, failure stress against a with the LEFM
+relation K_IC / (cos(beta) sqrt(pi a)), and the kink at both tips against the maximum hoop
+stress direction over beta.
 """
 import json
 import math
@@ -48,7 +52,14 @@ def failure_stress_figure(out, runs, curves):
         if runs is not None:
             r = runs[runs["tensile_strength_Pa"] == t0]
             r = r[np.isfinite(r["stop_Pa"])]
-            ax.plot(r["half_length_m"], r["stop_Pa"] / 1e6, "o", color="tab:red", ms=7, label="DDA")
+            # beta = 30 deg on the seed's grid only (the rosette runs have figures of their own)
+            r = r[np.array([not str(v).startswith("r_") for v in r["variant"]], dtype=bool)]
+            tough = np.array([str(v).startswith("e_") for v in r["variant"]], dtype=bool)
+            ax.plot(r["half_length_m"][~tough], r["stop_Pa"][~tough] / 1e6, "o", color="tab:red", ms=7,
+                    label="DDA, strength rule")
+            if tough.any():
+                ax.plot(r["half_length_m"][tough], r["stop_Pa"][tough] / 1e6, "D", color="tab:purple", ms=6,
+                        label="DDA, toughness criterion (K_IC from T0, eq. 4.13)")
         ax.set_xlim(0.0, 5.5)
         ax.set_ylim(0.0, 1.6 * t0 / 1e6)
         ax.set_xlabel("crack half-length a [m]")
@@ -111,6 +122,53 @@ def tips_figure(out, metrics, variant, name):
     plt.close(fig)
 
 
+def rosettes_figure(out, metrics):
+    runs = {k: m for k, m in metrics.items() if k.startswith("r_b") and isinstance(m, dict)}
+    if not runs:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.6))
+    colours = {15: "tab:blue", 45: "tab:red", 60: "tab:green"}
+    aa = np.linspace(1.0, 5.5, 100)
+    for beta in sorted({round(float(m["beta_deg"])) for m in runs.values()}):
+        sel = sorted((m for m in runs.values() if round(float(m["beta_deg"])) == beta),
+                     key=lambda m: float(m["half_length_m"]))
+        a = [float(m["half_length_m"]) for m in sel]
+        s = [(m.get("failure_stress_Pa") or {}).get("dda") for m in sel]
+        s = [np.nan if v is None else v / 1e6 for v in s]
+        k_ic = float(sel[0]["K_IC_Pa_sqrt_m"])
+        c = colours.get(beta, "k")
+        axes[0].plot(a, s, "o", color=c, label="DDA, beta = {} deg".format(beta))
+        axes[0].plot(aa, k_ic / (math.cos(math.radians(beta)) * np.sqrt(np.pi * aa)) / 1e6, "-", color=c, lw=0.8)
+        for m in sel:
+            tips = m.get("tips", {})
+            for side, marker in (("right", "o"), ("left", "x")):
+                for ang in tips.get(side, {}).get("failed_joint_angles_deg", []):
+                    axes[1].plot([beta + (0.8 if side == "left" else -0.8)], [ang], marker, color=c)
+    bb = np.linspace(0.5, 89.5, 200)
+    t = np.tan(np.radians(bb))
+    hoop = np.degrees(2 * np.arctan((1 - np.sqrt(1 + 8 * t * t)) / (4 * t)))
+    axes[1].plot(bb, hoop, "-", color="0.3", label="maximum hoop stress (Erdogan and Sih)")
+    axes[1].fill_between(bb, hoop - 5, hoop + 5, color="0.85", label="target: within 5 deg")
+    axes[1].plot([], [], "o", color="0.3", label="failed ray, right tip")
+    axes[1].plot([], [], "x", color="0.3", label="failed ray, left tip")
+    axes[0].set_xlabel("crack half-length a [m]")
+    axes[0].set_ylabel("far-field stress at failure s [MPa]")
+    axes[0].set_title("failure stress; lines: K_IC / (cos(beta) sqrt(pi a))")
+    axes[0].set_xlim(0, 5.5)
+    axes[0].grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    axes[1].set_xlabel("beta [deg]")
+    axes[1].set_ylabel("kink angle in the tip's axes [deg]")
+    axes[1].set_title("kink: rays at 5 deg steps around each tip")
+    axes[1].set_xlim(0, 90)
+    axes[1].grid(alpha=0.3)
+    axes[1].legend(fontsize=8)
+    fig.suptitle("Toughness criterion on tip rosettes (constrained Delaunay mesh), K_IC = 1.253 MPa m^0.5")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "lefm_mixed_rosettes.png"), dpi=130)
+    plt.close(fig)
+
+
 def main():
     out = sys.argv[1]
     with open(os.path.join(out, "result.json")) as f:
@@ -122,6 +180,7 @@ def main():
     failure_stress_figure(out, load_csv(os.path.join(out, "failure_stress.csv")),
                           load_csv(os.path.join(out, "relations.csv")))
     tips_figure(out, metrics, "a3_t1", "lefm_mixed_tips.png")
+    rosettes_figure(out, metrics)
 
 
 if __name__ == "__main__":

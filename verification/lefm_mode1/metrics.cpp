@@ -9,9 +9,13 @@
 // the case. Variants with the toughness criterion at crack tips
 // (fracture.criterion: energy_release_rate, attribute K_IC_Pa_sqrt_m) are compared with
 // the LEFM relation s_f = K_IC / sqrt(pi a) (K_I = s sqrt(pi a), Griffith crack), and the
-// same K_IC on L = 0.5 and 1 m with each other (study metrics objectivity_a2/a3/a5).
-// Writes failure_stress.csv (one row per variant) for plot.py.
+// same K_IC on L = 0.5 and 1 m with each other (study metrics objectivity_a2/a3/a5), and
+// on L = 0.25, 0.5 and 1 m (objectivity3_a2/a3/a5: largest over smallest failure stress
+// minus 1). Variants with the attribute mesh_kind: delaunay run on a constrained Delaunay
+// mesh (validate() checks it). Writes failure_stress.csv (one row per variant, with the
+// mesh) for plot.py.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -42,6 +46,9 @@ void validate(const io::CaseConfig& c, const VariantSpec& v) {
   for (const auto& f : c.fractures)
     if (f.initially_open) crack = 0.5 * (f.to - f.from).norm();
   if (std::abs(crack - v.number("a_m")) > 1e-9) throw std::runtime_error("the open crack's half-length is not a_m");
+  const bool delaunay = v.has("mesh_kind") && v.text("mesh_kind") == "delaunay";
+  if (delaunay != (c.mesh.kind == io::MeshKind::delaunay))
+    throw std::runtime_error("the variant's mesh_kind (delaunay or absent: structured) differs from mesh.type");
   const bool energy = c.fracture.criterion == io::FailureCriterionKind::energy_release_rate;
   if (energy != v.has("K_IC_Pa_sqrt_m"))
     throw std::runtime_error("a variant with K_IC_Pa_sqrt_m must use fracture.criterion: energy_release_rate, and only it");
@@ -106,7 +113,7 @@ Metrics variant_metrics(const VariantRun& r) {
 void study_metrics(StudyOutcome& s) {
   std::ostringstream csv;
   csv << "variant,a_m,L_m,T0_Pa,increment_Pa,failure_Pa,first_failure_Pa,first_joint_failure_Pa,"
-         "exact_field_Pa,near_tip_Pa,K_IC_Pa_sqrt_m,lefm_Pa,wall_s\n";
+         "exact_field_Pa,near_tip_Pa,K_IC_Pa_sqrt_m,lefm_Pa,wall_s,mesh\n";
   csv.precision(10);
   for (const VariantOutcome& v : s.variants) {
     const auto& n = v.metrics.numbers;
@@ -114,7 +121,8 @@ void study_metrics(StudyOutcome& s) {
         << v.variant().number("T0_Pa") << ',' << v.variant().number("increment_Pa") << ',' << n.at("failure_Pa")
         << ',' << n.at("first_failure_Pa") << ',' << n.at("first_joint_failure_Pa") << ',' << n.at("exact_field_Pa")
         << ',' << n.at("near_tip_Pa") << ',' << n.at("K_IC_Pa_sqrt_m") << ',' << n.at("lefm_Pa") << ','
-        << v.run.run.wall_seconds << '\n';
+        << v.run.run.wall_seconds << ','
+        << (v.variant().has("mesh_kind") ? v.variant().text("mesh_kind") : std::string("structured")) << '\n';
   }
   s.metrics.files["failure_stress.csv"] = csv.str();
   // Mesh objectivity of the toughness criterion: K_IC = 0.886 MPa m^0.5 on L = 1 m
@@ -127,6 +135,18 @@ void study_metrics(StudyOutcome& s) {
     s.metrics.numbers[key] = std::abs(ratio - 1.0);
     s.metrics.json[key] = finite_or_null(std::abs(ratio - 1.0));
     s.metrics.json["objectivity_ratio_a" + std::to_string(a)] = finite_or_null(ratio);
+    // The same K_IC on L = 0.25, 0.5 and 1 m: largest over smallest failure stress.
+    const std::string key3 = "objectivity3_a" + std::to_string(a);
+    const VariantOutcome* finest = s.find("e_a" + std::to_string(a) + "_L025_K089");
+    double spread = kNaN;
+    if (finest && fine && coarse) {
+      const double f1 = finest->metrics.numbers.at("failure_Pa"), f2 = fine->metrics.numbers.at("failure_Pa"),
+                   f3 = coarse->metrics.numbers.at("failure_Pa");
+      spread = std::max({f1, f2, f3}) / std::min({f1, f2, f3}) - 1.0;  // NaN if any is NaN
+      if (!std::isfinite(f1) || !std::isfinite(f2) || !std::isfinite(f3)) spread = kNaN;
+    }
+    s.metrics.numbers[key3] = spread;
+    s.metrics.json[key3] = finite_or_null(spread);
   }
 }
 

@@ -8,7 +8,8 @@ failure against the initial half-length a, for L = 0.5 and 1 m, with the exact-f
 relation T0 sqrt(L / (2a + L)) (erratum 6) and the seed's eq. 4.14, T0 sqrt(L / 2a).
 Open markers: the level at which the first whole joint failed. A last panel, when the
 study ran it: the toughness criterion at crack tips (fracture.criterion:
-energy_release_rate) against the LEFM relation K_IC / sqrt(pi a), for each K_IC and L.
+energy_release_rate) against the LEFM relation K_IC / sqrt(pi a), for each K_IC, L and mesh
+(structured, or constrained Delaunay).
 """
 import csv
 import os
@@ -23,16 +24,21 @@ import numpy as np  # noqa: E402
 
 def plot_toughness(ax, rows):
     """Failure stress with the toughness criterion against K_IC / sqrt(pi a)."""
-    groups = sorted({(float(r["K_IC_Pa_sqrt_m"]), float(r["L_m"])) for r in rows})
-    colours = ["tab:blue", "tab:red", "tab:green", "tab:purple"]
-    for i, (k, length) in enumerate(groups):
-        sel = sorted((r for r in rows if float(r["K_IC_Pa_sqrt_m"]) == k and float(r["L_m"]) == length),
-                     key=lambda r: float(r["a_m"]))
+    def mesh(r):
+        return r.get("mesh") or "structured"
+
+    groups = sorted({(float(r["K_IC_Pa_sqrt_m"]), float(r["L_m"]), mesh(r)) for r in rows})
+    colours = ["tab:blue", "tab:red", "tab:green", "tab:purple", "tab:orange", "tab:brown"]
+    markers = {0.25: "^", 0.5: "o", 1.0: "s"}
+    for i, (k, length, kind) in enumerate(groups):
+        sel = sorted((r for r in rows if float(r["K_IC_Pa_sqrt_m"]) == k and float(r["L_m"]) == length
+                      and mesh(r) == kind), key=lambda r: float(r["a_m"]))
         a = np.array([float(r["a_m"]) for r in sel])
         fail = np.array([float(r["failure_Pa"]) if r["failure_Pa"] not in ("nan", "") else np.nan for r in sel])
-        marker = "o" if length == 0.5 else "s"
-        ax.plot(a, fail / 1e6, marker, mfc="none" if length == 1.0 else None, color=colours[i % 4],
-                label=f"DDA, K_IC = {k / 1e6:.3f} MPa m^0.5, L = {length} m")
+        marker = "D" if kind == "delaunay" else markers.get(length, "o")
+        ax.plot(a, fail / 1e6, marker, mfc="none" if length == 1.0 and kind != "delaunay" else None,
+                color=colours[i % len(colours)],
+                label=f"DDA, K_IC = {k / 1e6:.3f} MPa m^0.5, L = {length} m" + (", Delaunay" if kind == "delaunay" else ""))
     for k in sorted({g[0] for g in groups}):
         aa = np.linspace(0.5, 5.0, 200)
         ax.plot(aa, k / np.sqrt(np.pi * aa) / 1e6, "-", color="0.4", lw=0.8)

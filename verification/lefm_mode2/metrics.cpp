@@ -7,7 +7,8 @@
 // failure. With the toughness criterion at crack tips (fracture.criterion:
 // energy_release_rate) the reference is the LEFM relation tau = K_IIC / sqrt(pi a)
 // (K_II = tau sqrt(pi a)), and the same K_IIC on L = 0.5 and 1 m are compared with each
-// other (study metrics objectivity_a2/a3/a5). Variants, thresholds and checks are in study.yaml. Writes failure_stress.csv
+// other (study metrics objectivity_a2/a3/a5); delaunay_mesh marks the runs on a constrained
+// Delaunay mesh. Variants, thresholds and checks are in study.yaml. Writes failure_stress.csv
 // (one row per variant) for plot.py. Stresses in Pa, lengths in m.
 
 #include <algorithm>
@@ -136,7 +137,9 @@ Metrics variant_metrics(const VariantRun& r) {
                  {"error_lefm", err_lefm},
                  {"abs_error_lefm", std::abs(err_lefm)},
                  // seed eq. 4.13 with C0 for T0: the same rock under both criteria
-                 {"toughness_mismatch", std::abs(k_iic / (c0 * std::sqrt(kPi * l / 2.0)) - 1.0)}};
+                 {"toughness_mismatch", std::abs(k_iic / (c0 * std::sqrt(kPi * l / 2.0)) - 1.0)},
+                 // 1: constrained Delaunay mesh, 0: structured
+                 {"delaunay_mesh", r.config && r.config->mesh.kind == io::MeshKind::delaunay ? 1.0 : 0.0}};
   nlohmann::json& m = out.json;
   for (const auto& [key, value] : out.numbers) m[key] = finite_or_null(value);
   m["path_joints"] = path.joints;
@@ -161,13 +164,14 @@ Metrics variant_metrics(const VariantRun& r) {
 void study_metrics(StudyOutcome& st) {
   std::string text =
       "variant,a_m,joint_length_m,cohesion_Pa,failure_stress_Pa,first_failure_Pa,first_joint_failure_Pa,"
-      "eq_4_24_Pa,exact_field_Pa,K_IIC_Pa_sqrt_m,lefm_Pa\n";
+      "eq_4_24_Pa,exact_field_Pa,K_IIC_Pa_sqrt_m,lefm_Pa,delaunay_mesh\n";
   for (const VariantOutcome& v : st.variants) {
     const auto& n = v.metrics.numbers;
     auto get = [&](const char* key) { return n.count(key) ? n.at(key) : kNaN; };
     text += v.variant().name;
     for (const char* key : {"a_m", "joint_length_m", "cohesion_Pa", "failure_stress_Pa", "first_failure_Pa",
-                            "first_joint_failure_Pa", "eq_4_24_Pa", "exact_field_Pa", "K_IIC_Pa_sqrt_m", "lefm_Pa"}) {
+                            "first_joint_failure_Pa", "eq_4_24_Pa", "exact_field_Pa", "K_IIC_Pa_sqrt_m", "lefm_Pa",
+                            "delaunay_mesh"}) {
       text += ',';
       text += number(get(key));
     }

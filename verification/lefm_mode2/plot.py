@@ -24,15 +24,17 @@ STYLE = {0.5: ("o", "tab:blue"), 1.0: ("s", "tab:red")}
 
 def plot_toughness(ax, rows):
     """Failure stress with the toughness criterion against K_IIC / sqrt(pi a)."""
-    groups = sorted(set((float(k), float(length)) for k, length in zip(rows["K_IIC_Pa_sqrt_m"], rows["joint_length_m"])
-                        if np.isfinite(length)))
-    colours = ["tab:blue", "tab:red", "tab:green", "tab:purple"]
-    for i, (k, length) in enumerate(groups):
-        sel = rows[(rows["K_IIC_Pa_sqrt_m"] == k) & (rows["joint_length_m"] == length)]
+    delaunay = rows["delaunay_mesh"] if "delaunay_mesh" in rows.dtype.names else np.zeros(len(rows))
+    groups = sorted(set((float(k), float(length), float(d)) for k, length, d in
+                        zip(rows["K_IIC_Pa_sqrt_m"], rows["joint_length_m"], delaunay) if np.isfinite(length)))
+    colours = ["tab:blue", "tab:red", "tab:green", "tab:purple", "tab:orange"]
+    for i, (k, length, d) in enumerate(groups):
+        sel = rows[(rows["K_IIC_Pa_sqrt_m"] == k) & (rows["joint_length_m"] == length) & (delaunay == d)]
         sel = sel[np.argsort(sel["a_m"])]
-        marker = "o" if length == 0.5 else "s"
-        ax.plot(sel["a_m"], sel["failure_stress_Pa"] / 1e6, marker, color=colours[i % 4], ms=7,
-                mfc="none" if length == 1.0 else None, label=f"DDA, K_IIC = {k / 1e6:.3f} MPa m^0.5, L = {length:g} m")
+        marker = "D" if d == 1.0 else ("o" if length == 0.5 else "s")
+        ax.plot(sel["a_m"], sel["failure_stress_Pa"] / 1e6, marker, color=colours[i % len(colours)], ms=7,
+                mfc="none" if length == 1.0 and d != 1.0 else None,
+                label=f"DDA, K_IIC = {k / 1e6:.3f} MPa m^0.5, L = {length:g} m" + (", Delaunay" if d == 1.0 else ""))
     for k in sorted(set(g[0] for g in groups)):
         a = np.linspace(0.5, 5.0, 200)
         ax.plot(a, k / np.sqrt(np.pi * a) / 1e6, "-", color="0.4", lw=0.8)
