@@ -17,6 +17,8 @@ constexpr double kFloorRounding = 0.01;
 constexpr double kPressureRounding = 1.0e3;
 /// Bounds of the fill scale P of a partly filled node [Pa]; the upper one is K_f.
 constexpr double kMinFillScale = 10.0 * kPressureRounding;
+/// Largest change of an unknown in one full Newton step, unless the unknowns are larger [Pa].
+constexpr double kFullStepCap = 1.0e6;
 }  // namespace
 
 struct FlowNetwork::Evaluation {
@@ -406,7 +408,8 @@ Eigen::VectorXd FlowNetwork::self_capacity(const Eigen::VectorXd& x, const Apert
 }
 
 bool FlowNetwork::newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
-                         NewtonProgress& progress, bool pseudo_transient) {
+                         NewtonProgress& progress, NewtonStep mode) {
+  const bool pseudo_transient = mode == NewtonStep::pseudo_transient;
   const int n = static_cast<int>(trial_nodes_.size());
   const double mass_scale = std::max(old_mass_.sum() + injected_.sum(), 1e-300);
   const double tol = settings_.tolerance;
@@ -456,12 +459,26 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolv
       // Backtracking on the mass residual: apertures and transmissivities have kinks at
       // the minimum widths, where full Newton steps may overshoot.
       dx = solve_linear(ev.local);
-      for (int cut = 0; cut < 30 && !converged_residual; ++cut, alpha *= 0.5) {
-        evaluate(x + alpha * dx, base, s, trial, false);
-        if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit) break;
+      if (mode == NewtonStep::full) {
+        // Where every end near the solution sits on its floor the Jacobian sees only the
+        // fluid's compressibility, and its step runs far past the floors' corners; the
+        // next Jacobian, on the other side, steps back (an active-set iteration in effect).
+        // A residual that must fall at every step would cut such steps to nothing
+        // (docs/design_notes.md section 23). The cap only keeps iterates finite.
+        const double cap = std::max(kFullStepCap, x.cwiseAbs().maxCoeff());
+        const double largest = dx.cwiseAbs().maxCoeff();
+        if (largest > cap) alpha = cap / largest;
+      } else {
+        // Backtracking on the mass residual: apertures and transmissivities have kinks at
+        // the minimum widths, where full Newton steps may overshoot.
+        for (int cut = 0; cut < 30 && !converged_residual; ++cut, alpha *= 0.5) {
+          evaluate(x + alpha * dx, base, s, trial, false);
+          if (trial.residual.norm() <= (1.0 - 1e-4 * alpha) * merit) break;
+        }
       }
     }
     x += alpha * dx;
+    if (mode == NewtonStep::full) x = x.cwiseMax(-fill_scale_);  // a fill fraction is never negative
     progress.max_pressure = 0.0, progress.change = 0.0;
     for (int i = 0; i < n; ++i) {
       progress.max_pressure = std::max(progress.max_pressure, std::abs(x[i]));

@@ -31,11 +31,13 @@
 // tips) and by the closing limit (at most 5 % a step). Newton's method on the nodal
 // unknowns then solves the coupled problem without stabilisation constants. Where it
 // stalls (a closed new tip whose own pressure opens the fracture behind it makes the
-// mass balance non-monotone), the solve falls back, in order, on pseudo-transient
-// continuation, restarts with the dry nodes at their neighbours' pressure, and
-// continuation in the step's inflows, and last holding the closing joints open for
-// the step; FlowSolveStatistics::restarts counts them
-// (why and with what evidence: docs/design_notes.md section 3).
+// mass balance non-monotone; a network whose apertures all sit on their floors, where
+// only the fluid's compressibility answers a pressure change), the solve falls back,
+// in order, on full Newton steps without line search, pseudo-transient continuation,
+// restarts with the dry nodes at their neighbours' pressure, continuation in the
+// step's inflows, and last holding the closing joints open for the step;
+// FlowSolveStatistics::restarts counts them (why and with what evidence:
+// docs/design_notes.md sections 3 and 23).
 //
 // Units SI, per metre of out-of-plane thickness (h = 1 m in eq. 2.2-2.3).
 
@@ -201,10 +203,15 @@ class FlowNetwork {
   struct NewtonProgress {
     double residual = 0.0, change = 0.0, max_pressure = 0.0;  // of the last iteration
   };
-  /// Newton from the current unknowns, with line search or as pseudo-transient
-  /// continuation; false if it did not converge.
+  /// How a Newton iteration moves from one iterate to the next.
+  enum class NewtonStep {
+    line_search,       ///< backtracking until the mass residual falls
+    full,              ///< the whole step, capped in size, fill fractions kept >= 0
+    pseudo_transient,  ///< a diagonal shift that pseudo-time relaxes (a trust region)
+  };
+  /// Newton from the current unknowns; false if it did not converge.
   bool newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
-              NewtonProgress& progress, bool pseudo_transient);
+              NewtonProgress& progress, NewtonStep mode);
   /// Per node: the positive part of the slope of its mass balance in its own unknown
   /// (the pseudo-transient shift's scale).
   Eigen::VectorXd self_capacity(const Eigen::VectorXd& x, const ApertureModel& s, const Evaluation& ev) const;

@@ -21,7 +21,7 @@ bool FlowNetwork::continuation(const Eigen::VectorXd& base, ApertureModel& s, Fl
     const double next = std::min(1.0, lambda + step);
     const Eigen::VectorXd x0 = unknowns_, scale0 = fill_scale_;
     homotopy_ = next;
-    if (newton(base, s, stats, progress, false)) {
+    if (newton(base, s, stats, progress, NewtonStep::line_search)) {
       lambda = next;
       step *= 2.0;
       continue;
@@ -38,12 +38,16 @@ void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel&
                                      FlowSolveStatistics& stats) {
   const Eigen::VectorXd start = unknowns_, start_scale = fill_scale_;
   NewtonProgress progress;
-  if (newton(base, s, stats, progress, false)) return;
+  if (newton(base, s, stats, progress, NewtonStep::line_search)) return;
   const Eigen::VectorXd stalled = unknowns_, stalled_scale = fill_scale_;
-  ++stats.restarts;
-  unknowns_ = start;
-  fill_scale_ = start_scale;
-  if (newton(base, s, stats, progress, true)) return;
+  // Full steps from the warm start: where the network sits on the floors of its
+  // apertures, the line search stalls against their corners (design notes section 23).
+  for (const NewtonStep mode : {NewtonStep::full, NewtonStep::pseudo_transient}) {
+    ++stats.restarts;
+    unknowns_ = start;
+    fill_scale_ = start_scale;
+    if (newton(base, s, stats, progress, mode)) return;
+  }
   // Further starts. A node that is not yet pressurised but takes in more fluid than it
   // can hold must end up near the pressure of the node feeding it. On the way there its
   // mass balance is not monotone: its own pressure opens the fracture behind it and
@@ -64,11 +68,11 @@ void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel&
   for (const auto& [from, scale] : {std::pair{start, start_scale}, std::pair{stalled, stalled_scale}}) {
     const Eigen::VectorXd guess = flooded(from);
     if (guess == from) continue;
-    for (const bool pseudo_transient : {false, true}) {
+    for (const NewtonStep mode : {NewtonStep::line_search, NewtonStep::pseudo_transient}) {
       ++stats.restarts;
       unknowns_ = guess;
       fill_scale_ = scale;
-      if (newton(base, s, stats, progress, pseudo_transient)) return;
+      if (newton(base, s, stats, progress, mode)) return;
     }
   }
   // Last resort, continuation: the step's inflows, leak-off and flow scaled by lambda
@@ -94,10 +98,10 @@ void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel&
     if (!wetted_[f]) continue;
     for (int end = 0; end < 2; ++end) floor_[2 * k + end] = std::max(floor_[2 * k + end], aperture_[2 * f + end]);
   }
-  for (const bool pseudo_transient : {false, true}) {
+  for (const NewtonStep mode : {NewtonStep::line_search, NewtonStep::full, NewtonStep::pseudo_transient}) {
     unknowns_ = start;
     fill_scale_ = start_scale;
-    if (newton(base, s, stats, progress, pseudo_transient)) return;
+    if (newton(base, s, stats, progress, mode)) return;
   }
   floor_ = floor;
   std::ostringstream msg;
