@@ -69,6 +69,7 @@ StepStatistics CoupledStep::attempt(double dt_s) {
     for (FluidLoadModel* f : fluids_) f->begin_step(mechanics_, dt_s);
     stats.seconds_assembly += seconds_since(start);
     const Eigen::VectorXd d = open_close_iterations(stats);
+    reject_overlapping_faces(d);
     mechanics_.commit(d, dt_s, stats);
     for (FluidLoadModel* f : fluids_) f->commit(mechanics_);
   } catch (...) {
@@ -79,6 +80,21 @@ StepStatistics CoupledStep::attempt(double dt_s) {
   stats.seconds_total = seconds_since(step_start);
   for (FluidLoadModel* f : fluids_) f->add_statistics(stats);
   return stats;
+}
+
+void CoupledStep::reject_overlapping_faces(const Eigen::VectorXd& d) const {
+  const double limit = mechanics_.settings().max_overlap_fraction;
+  const dda::BlockSystem::FaceOverlap worst = mechanics_.largest_face_overlap(d);
+  if (worst.joint < 0 || worst.fraction_of_length <= limit) return;
+  const mesh::Joint& joint = mechanics_.mesh().joints[worst.joint];
+  const int point = worst.end == 0 ? joint.point_p : joint.point_q;
+  const Vec2& at = mechanics_.mesh().points[point];
+  std::ostringstream msg;
+  msg << "the faces of joint " << worst.joint << " overlap by " << worst.overlap_m << " m at point " << point
+      << " (" << at.x() << ", " << at.y() << ") m, " << worst.fraction_of_length
+      << " of the joint's length (limit " << limit
+      << "): the contact state the iterations ended on is not a solution";
+  throw ConvergenceError(msg.str());
 }
 
 Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {

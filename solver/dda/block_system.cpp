@@ -86,6 +86,21 @@ JointEndGap BlockSystem::joint_end_gap(int joint, int end) const {
   return g;
 }
 
+BlockSystem::FaceOverlap BlockSystem::largest_face_overlap(const Eigen::VectorXd& d) const {
+  FaceOverlap worst;
+  for (int j = 0; j < static_cast<int>(mesh_.joints.size()); ++j) {
+    const mesh::Joint& joint = mesh_.joints[j];
+    const double length = (mesh_.points[joint.point_q] - mesh_.points[joint.point_p]).norm();
+    for (int end = 0; end < 2; ++end) {
+      const JointEndGap g = joint_end_gap(j, end);
+      const double overlap = -(g.gap0_m + g.row_a.dot(d.segment<6>(6 * g.block_a)) +
+                               g.row_b.dot(d.segment<6>(6 * g.block_b)));
+      if (overlap > worst.fraction_of_length * length) worst = {overlap, overlap / length, j, end};
+    }
+  }
+  return worst;
+}
+
 // ----------------------------------------------------------------------------------
 // Queries at the committed state
 

@@ -67,6 +67,12 @@ struct MechanicsSettings {
   /// Cycle detection (seed 5.1): a contact changing state more often than this within
   /// a step is set to the most open state it had in the step and held there.
   int max_state_flips = 6;
+  /// A step whose contact iterations end with two faces of a joint overlapping by more
+  /// than this fraction of the joint's length is not accepted (it is cut): no rock mass
+  /// deforms that much, so the contact state it ended on, e.g. a cycle held open while
+  /// its faces pass through each other, is not a solution (docs/design_notes.md
+  /// section 24; Shi's DDA cuts the time step on its penetration limit likewise).
+  double max_overlap_fraction = 0.1;
   bool dynamic = false;                     ///< false: velocities reset every step (static)
 };
 
@@ -165,6 +171,13 @@ class BlockSystem {
   /// joint's point p) to pressure_q, acting on both faces of the joint.
   void add_joint_pressure_load(int joint, double pressure_p_Pa, double pressure_q_Pa, Eigen::VectorXd& forces) const;
   JointEndGap joint_end_gap(int joint, int end) const;
+  /// The joint end whose faces overlap most, relative to the joint's length, at the
+  /// trial displacement d (linearised gaps); overlap 0 and joint -1 if none does.
+  struct FaceOverlap {
+    double overlap_m = 0.0, fraction_of_length = 0.0;
+    int joint = -1, end = 0;
+  };
+  FaceOverlap largest_face_overlap(const Eigen::VectorXd& d) const;
 
   // --- state queries --------------------------------------------------------------
   const mesh::Mesh& mesh() const { return mesh_; }

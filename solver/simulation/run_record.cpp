@@ -13,7 +13,9 @@ StepContext make_step_context(const Model& model, int step, double time_s, const
   for (std::size_t j = 0; j < m.joints.size(); ++j)
     for (int end = 0; end < 2; ++end) {
       c.open_joint_ends += system.joint_end_state(static_cast<int>(j), end) == dda::ContactState::open;
-      c.max_aperture_m = std::max(c.max_aperture_m, system.joint_gap(static_cast<int>(j), end));
+      const double gap = system.joint_gap(static_cast<int>(j), end);
+      c.max_aperture_m = std::max(c.max_aperture_m, gap);
+      c.max_overlap_m = std::max(c.max_overlap_m, -gap);
     }
   const fluid::FlowNetwork* flow = model.flow.get();
   c.inlet_point = flow && !model.injection_points.empty() ? model.injection_points.front() : -1;
@@ -102,7 +104,10 @@ std::vector<OutputColumn> make_fixed_columns() {
        [](const StepContext& c) { return double(c.stats.active_vertex_vertex); }},
       {"open_joint_ends", "-", "joint ends in the open state", [](const StepContext& c) { return double(c.open_joint_ends); }},
       {"max_aperture_m", "m", "largest joint-end gap", [](const StepContext& c) { return c.max_aperture_m; }},
-      {"max_penetration_m", "m", "largest penetration", [](const StepContext& c) { return c.stats.max_penetration_m; }},
+      {"max_penetration_m", "m", "largest penetration met in the step's contact iterations, iterates included",
+       [](const StepContext& c) { return c.stats.max_penetration_m; }},
+      {"max_overlap_m", "m", "largest overlap of joint faces in the committed state",
+       [](const StepContext& c) { return c.max_overlap_m; }},
       {"step_wall_s", "s", "wall time of the step", [](const StepContext& c) { return c.stats.seconds_total; }},
       {"elapsed_wall_s", "s", "wall time of the run so far", [](const StepContext& c) { return c.elapsed_s; }},
       {"step_cuts", "-", "halvings of the step after a failed attempt (0 without a flow network)",
@@ -112,8 +117,9 @@ std::vector<OutputColumn> make_fixed_columns() {
       {"flow_newton_iterations", "-", "Newton iterations of the flow solves",
        [](const StepContext& c) { return double(c.stats.flow_newton_iterations); }},
       {"flow_newton_restarts", "-",
-       "fallbacks used after the flow Newton stalled: pseudo-transient continuation, restarts with the dry nodes "
-       "at their neighbours' pressure, continuation in the step's inflows",
+       "fallbacks used after the flow Newton stalled: full Newton steps, pseudo-transient continuation, restarts "
+       "with the dry nodes at their neighbours' pressure, continuation in the step's inflows, the closing joints "
+       "held open",
        [](const StepContext& c) { return double(c.stats.flow_newton_restarts); }},
       {"flow_krylov_iterations", "-", "GMRES iterations of the flow Newton (numerics.flow_jacobian: krylov; 0 otherwise)",
        [](const StepContext& c) { return double(c.stats.flow_krylov_iterations); }},

@@ -30,6 +30,10 @@ struct StepContext {
   // Derived once per step by make_step_context().
   int open_joint_ends = 0;
   double max_aperture_m = 0.0;
+  /// Largest overlap of a joint's faces in the committed state (the negative of its
+  /// smallest gap, 0 if none) [m]: unlike the step statistics' max_penetration_m it
+  /// ignores the iterates of the contact iterations.
+  double max_overlap_m = 0.0;
   int wetted_joints = 0;               ///< 0 without a flow network
   int inlet_point = -1;                ///< mesh point of the first injection, -1 if none
   double open_xmin_m = 0.0, open_xmax_m = 0.0, open_ymin_m = 0.0, open_ymax_m = 0.0;

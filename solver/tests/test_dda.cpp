@@ -5,7 +5,9 @@
 #include <Eigen/Dense>
 #include <memory>
 #include <random>
+#include <string>
 
+#include "core/errors.hpp"
 #include "coupling/coupled_step.hpp"
 #include "dda/block_kinematics.hpp"
 #include "dda/block_sparse_matrix.hpp"
@@ -324,6 +326,61 @@ TEST(DdaCycles, ContactFlippingTooOftenIsHeldInItsMostOpenState) {
     EXPECT_EQ(system.contacts()[ci].state, ContactState::open);
     EXPECT_EQ(stats.cycle_holds, 6 - max_flips);
     EXPECT_EQ(applied, max_flips + 1);
+  }
+}
+
+TEST(DdaOverlap, FacesPushedIntoEachOtherAreMeasuredAlongTheJoint) {
+  // Two unit squares sharing the joint x = 1: moving the right block 0.3 m into the left
+  // one overlaps both ends of the joint by 0.3 m, 0.3 of its length; moving it away
+  // overlaps nothing.
+  const mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
+  BlockSystem system(m, {Material{}}, alm_settings(25e9));
+  system.begin_step(1.0);
+  const mesh::Joint& joint = m.joints[0];
+  auto mean_x = [&](int b) {
+    double x = 0.0;
+    for (int k = 0; k < system.n_corners(b); ++k) x += system.corner(b, k).x() / system.n_corners(b);
+    return x;
+  };
+  const int right = mean_x(joint.block_a) > mean_x(joint.block_b) ? joint.block_a : joint.block_b;
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(6 * system.n_blocks());
+  d[6 * right] = -0.3;
+  const BlockSystem::FaceOverlap into = system.largest_face_overlap(d);
+  EXPECT_EQ(into.joint, 0);
+  EXPECT_NEAR(into.overlap_m, 0.3, 1e-12);
+  EXPECT_NEAR(into.fraction_of_length, 0.3, 1e-12);
+  d[6 * right] = 0.3;
+  EXPECT_EQ(system.largest_face_overlap(d).joint, -1);
+}
+
+TEST(DdaOverlap, StepEndingWithFacesPassedThroughEachOtherIsRejected) {
+  // The joint starts open and its contact may not change state (a cycle held at once),
+  // so a load pushing the free block into the fixed one meets nothing but the block's
+  // inertia: the step would end with the faces 1.2 m through each other. It is refused
+  // (ConvergenceError, which cuts a step) naming the joint; half the load ends 0.06 of
+  // the joint's length into it, which passes.
+  mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
+  for (auto& j : m.joints) j.properties.initially_open = true;
+  for (const double load_fraction : {1.0, 0.05}) {
+    MechanicsSettings settings = alm_settings(25e9);
+    settings.max_state_flips = 0;
+    BlockSystem system(m, {Material{}}, settings);
+    system.add_fixed_point({0.0, 0.0});
+    system.add_fixed_point({0.0, 1.0});
+    const Material rock{};
+    // Inertia of the free block over dt = 1 s: 2 rho A / dt^2 per unit translation.
+    const double push = load_fraction * 1.2 * 2.0 * rock.density_kg_m3;
+    system.add_point_load({1.5, 0.5}, {-push, 0.0});
+    if (load_fraction == 1.0) {
+      try {
+        step(system, 1.0);
+        ADD_FAILURE() << "a step with faces 1.2 m through each other was accepted";
+      } catch (const ConvergenceError& e) {
+        EXPECT_NE(std::string(e.what()).find("faces of joint"), std::string::npos) << e.what();
+      }
+    } else {
+      EXPECT_NO_THROW(step(system, 1.0));
+    }
   }
 }
 
