@@ -39,10 +39,10 @@ class CoupledStep {
   void advance_into(double dt_s, int cuts_left, StepStatistics& stats);
   /// One step without cut-back; throws ConvergenceError after rolling everything back.
   StepStatistics attempt(double dt_s);
-  /// Open-close iterations until no state changes; the converged displacement.
   /// Throws ConvergenceError (the step is cut) where the iterations ended with two
   /// faces of a joint overlapping by more than max_overlap_fraction of its length.
   void reject_overlapping_faces(const Eigen::VectorXd& d) const;
+  /// Open-close iterations until no state changes; the converged displacement.
   Eigen::VectorXd open_close_iterations(StepStatistics& stats);
   /// The contact iterations (ALM or penalty) of one open-close iteration.
   Eigen::VectorXd solve_contacts(StepStatistics& stats);

@@ -456,8 +456,6 @@ bool FlowNetwork::newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolv
         shift = std::max(10.0 * shift, 1.0);  // too long a pseudo-time step: shorten it
       }
     } else {
-      // Backtracking on the mass residual: apertures and transmissivities have kinks at
-      // the minimum widths, where full Newton steps may overshoot.
       dx = solve_linear(ev.local);
       if (mode == NewtonStep::full) {
         // Where every end near the solution sits on its floor the Jacobian sees only the

@@ -357,8 +357,8 @@ TEST(DdaOverlap, StepEndingWithFacesPassedThroughEachOtherIsRejected) {
   // The joint starts open and its contact may not change state (a cycle held at once),
   // so a load pushing the free block into the fixed one meets nothing but the block's
   // inertia: the step would end with the faces 1.2 m through each other. It is refused
-  // (ConvergenceError, which cuts a step) naming the joint; half the load ends 0.06 of
-  // the joint's length into it, which passes.
+  // (ConvergenceError, which cuts a step) naming the joint; a twentieth of the load ends
+  // 0.06 of the joint's length into it, which passes.
   mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
   for (auto& j : m.joints) j.properties.initially_open = true;
   for (const double load_fraction : {1.0, 0.05}) {
