@@ -27,17 +27,22 @@
 //
 // Apertures come from the mechanics as an affine model of the nodal pressures,
 // w_e(p) = base_e + S_e . p (exact for the linear block system once its contacts are
-// fixed), plus the fracture's hydraulic width w0 when it has one, bounded below by w0, by the minimum widths (0.5 um inside the network, 0.1 um at
-// tips) and by the closing limit (at most 5 % a step). Newton's method on the nodal
-// unknowns then solves the coupled problem without stabilisation constants. Where it
-// stalls (a closed new tip whose own pressure opens the fracture behind it makes the
-// mass balance non-monotone; a network whose apertures all sit on their floors, where
-// only the fluid's compressibility answers a pressure change), the solve falls back,
-// in order, on full Newton steps without line search, pseudo-transient continuation,
-// restarts with the dry nodes at their neighbours' pressure, continuation in the
-// step's inflows, and last holding the closing joints open for the step;
-// FlowSolveStatistics::restarts counts them (why and with what evidence:
-// docs/design_notes.md sections 3 and 23).
+// fixed), plus the fracture's hydraulic width w0 when it has one, bounded below by w0,
+// by the minimum widths (0.5 um inside the network, 0.1 um at tips) and by the closing
+// limit (at most 5 % a step). Newton's method on the nodal unknowns then solves the
+// coupled problem without stabilisation constants, with fallbacks where it stalls.
+//
+// Three parts:
+// - FlowNetwork (this file, flow_network.cpp, flow_network_state.cpp): the network
+//   (fractures, injections, the wetted set and the trial topology of a step), the
+//   committed state, the mass ledger, the step API (begin_step, wet, solve, commit) and
+//   checkpoints. It builds each step's TrialNetwork: end nodes, old masses, inflows,
+//   leak-off volumes, floors and fill scales.
+// - MassBalance (fluid/mass_balance.hpp): the step's mass balance as an operator,
+//   residual and Jacobian at given unknowns.
+// - MassBalanceSolver (fluid/mass_balance_solver.hpp): Newton, its step modes and the
+//   fallback sequence; FlowSolveStatistics::restarts counts the fallbacks (why and with
+//   what evidence: docs/design_notes.md sections 3 and 23).
 //
 // Units SI, per metre of out-of-plane thickness (h = 1 m in eq. 2.2-2.3).
 
@@ -49,6 +54,8 @@
 #include <vector>
 
 #include "fluid/aperture_model.hpp"
+#include "fluid/mass_balance.hpp"
+#include "fluid/mass_balance_solver.hpp"
 
 namespace hfdda {
 class BinaryWriter;
@@ -56,27 +63,6 @@ class BinaryReader;
 }  // namespace hfdda
 
 namespace hfdda::fluid {
-
-struct FluidProperties {
-  double density_kg_m3 = 1000.0;
-  double bulk_modulus_Pa = 2.2e9;
-  double viscosity_Pa_s = 1.0e-3;
-  double reference_pressure_Pa = 0.0;
-  double leak_off_coefficient_m_sqrt_s = 0.0;  ///< Carter C_L of one wall
-
-  double density(double pressure_Pa) const {
-    return density_kg_m3 * (1.0 + (pressure_Pa - reference_pressure_Pa) / bulk_modulus_Pa);
-  }
-  double density_derivative() const { return density_kg_m3 / bulk_modulus_Pa; }
-};
-
-struct FlowSettings {
-  double min_width_main_m = 0.5e-6;
-  double min_width_tip_m = 0.1e-6;
-  double max_closing_fraction = 0.05;
-  double tolerance = 1.0e-9;        ///< Newton: relative pressure change and mass residual
-  int max_newton_iterations = 60;
-};
 
 struct Fracture {
   int point_p = -1, point_q = -1;
@@ -101,13 +87,6 @@ struct Injection {
     const double seconds = std::max(0.0, t_s - start_time_s);
     return std::min(mass_rate_kg_s * seconds, mass_limit_kg);
   }
-};
-
-struct FlowSolveStatistics {
-  int newton_iterations = 0;
-  int restarts = 0;                    ///< fallbacks used after Newton stalled (see the header)
-  int zero_pressure_nodes = 0;
-  double max_relative_residual = 0.0;  ///< max |mass residual| / mass scale at convergence
 };
 
 class FlowNetwork {
@@ -185,57 +164,12 @@ class FlowNetwork {
   void restore_state(BinaryReader& in);
 
  private:
-  struct Evaluation;
   void rebuild_trial_topology();
-  void evaluate(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& base, const ApertureModel& s,
-                Evaluation& out, bool with_jacobian) const;
-  /// Pieces of evaluate, in its order: pressure of the fill state, floored apertures,
-  /// storage and the node terms of the residual, flow between nodes, Jacobian.
-  void evaluate_pressure(const Eigen::VectorXd& unknowns, Evaluation& out) const;
-  void evaluate_aperture(const Eigen::VectorXd& base, const ApertureModel& s, Evaluation& out) const;
-  void evaluate_storage(const Eigen::VectorXd& unknowns, Evaluation& out) const;
-  void evaluate_flow(Evaluation& out) const;
-  void evaluate_jacobian(const Eigen::VectorXd& unknowns, Evaluation& out) const;
-  /// Adds the derivatives of the flow between nodes (in the pressures) to the local and
-  /// coupling parts of the Jacobian.
-  void add_flow_jacobian(const Evaluation& out, std::vector<Eigen::Triplet<double>>& local,
-                         std::vector<Eigen::Triplet<double>>& coupling) const;
-  struct NewtonProgress {
-    double residual = 0.0, change = 0.0, max_pressure = 0.0;  // of the last iteration
-  };
-  /// How a Newton iteration moves from one iterate to the next.
-  enum class NewtonStep {
-    line_search,       ///< backtracking until the mass residual falls
-    full,              ///< the whole step, capped in size, fill fractions kept >= 0
-    pseudo_transient,  ///< a diagonal shift that pseudo-time relaxes (a trust region)
-  };
-  /// Newton from the current unknowns; false if it did not converge.
-  bool newton(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
-              NewtonProgress& progress, NewtonStep mode);
-  /// Per node: the positive part of the slope of its mass balance in its own unknown
-  /// (the pseudo-transient shift's scale).
-  Eigen::VectorXd self_capacity(const Eigen::VectorXd& x, const ApertureModel& s, const Evaluation& ev) const;
-  /// Newton along lambda = 0 -> 1 (homotopy_); false if a stage could not be solved.
-  bool continuation(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
-                    NewtonProgress& progress);
-  /// Scale of the step's inflows, leak-off and flow in the mass balance (1 except
-  /// during continuation), and the flow's time factor it gives.
-  double homotopy_ = 1.0;
-  double flow_dt() const { return homotopy_ * dt_s_; }
-  /// Newton, then pseudo-transient continuation, flooded starts and continuation in
-  /// the step's inflows if needed; throws ConvergenceError.
-  void solve_mass_balance(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats);
-  /// Stored mass per volume of a node in fill state y, and its derivative in y.
-  double fill_density(double y, int node) const;
-  double fill_density_slope(double y, int node) const;
-  /// Fraction of a node's fracture walls that the fluid wets in fill state y (1 if full).
-  double wetted_fraction(double y, int node) const;
-  /// Round-off of the step's mass balance [kg]: 64 eps times its largest terms.
-  double residual_round_off() const;
-  /// Committed form of a trial node's fill state: the pressure [Pa] if full, else the
-  /// fill fraction minus one, in [-1, 0) (independent of the fill scale).
+  /// Per trial fracture: its length and hydraulic width, and the held-open floors of
+  /// its ends from its floors (see TrialNetwork).
+  void set_trial_fracture_data();
+  /// Committed form of a trial node's fill state (MassBalance::state_of_unknown).
   double state_of_unknown(int node) const;
-  void rescale_partly_filled_nodes(Evaluation& ev);
 
   std::vector<Fracture> fractures_;
   FluidProperties fluid_;
@@ -252,15 +186,10 @@ class FlowNetwork {
   double initial_mass_ = 0.0;            ///< fluid present at t = 0 [kg]
 
   // Trial of the current step.
-  double dt_s_ = 0.0;
   std::vector<char> trial_wetted_;
   std::vector<int> trial_fractures_, trial_nodes_, node_of_point_;
-  std::vector<int> fracture_node_a_, fracture_node_b_;   // per trial fracture: node indices
-  Eigen::VectorXd old_mass_, injected_, leak_volume_;    // per trial node
-  Eigen::VectorXd floor_;                                // per trial end: lower bound of the aperture
-  Eigen::VectorXd hydraulic_width_;                      // per trial end: w0 of its fracture
-  Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_;
-  Eigen::VectorXd fill_scale_;                           // per trial node: P of the fill state [Pa]
+  TrialNetwork trial_;  // what its mass balance needs: end nodes, masses, inflows, floors, dt
+  Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_;  // per trial node or end
   std::vector<double> point_state_;                      // per point: pressure [Pa] if full, else fill fraction - 1
   std::vector<char> reached_;                            // the fluid has been at the point
   std::vector<double> guess_state_;                      // per point, warm start across topology changes

@@ -274,7 +274,7 @@ TEST(FlowNetwork, NewTipsWithElasticWallsConverge) {
   // new tip) with symmetric positive compliances dV_i/dp_j, as the block system's are,
   // that Newton with line search alone (no fallbacks) could not solve: the tip
   // is closed by the mechanics, its pressure opens the fracture behind it, and Newton
-  // stalled. Each must now converge (with the fallbacks of solve_mass_balance) and
+  // stalled. Each must now converge (with the fallbacks of MassBalanceSolver::solve) and
   // close the ledger. Parameters: fracture 0 initial width, injection rate, dt, base
   // widths of the two ends of the new fracture, sensitivity S (4 ends x 3 nodes).
   struct Case {

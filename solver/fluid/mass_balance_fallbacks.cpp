@@ -1,51 +1,52 @@
 #include <algorithm>
 #include <sstream>
+#include <utility>
 
 #include "core/errors.hpp"
-#include "fluid/flow_network.hpp"
+#include "fluid/mass_balance_solver.hpp"
 
-// The fallbacks of the flow solve, tried in order when Newton from the warm start
-// stalls (why and with what evidence: docs/design_notes.md section 3).
+// The solve's sequence: Newton from the warm start, then the fallbacks, tried in order
+// when it stalls (why and with what evidence: docs/design_notes.md sections 3 and 23).
 
 namespace hfdda::fluid {
 
-bool FlowNetwork::continuation(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
-                               NewtonProgress& progress) {
+bool MassBalanceSolver::continuation(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats,
+                                     NewtonProgress& progress) {
   struct Restore {
     double& value;
     ~Restore() { value = 1.0; }
-  } restore{homotopy_};
+  } restore{network_.homotopy};
   double lambda = 0.0, step = 0.125;
   int failures = 0;
   while (lambda < 1.0) {
     const double next = std::min(1.0, lambda + step);
-    const Eigen::VectorXd x0 = unknowns_, scale0 = fill_scale_;
-    homotopy_ = next;
+    const Eigen::VectorXd x0 = unknowns_, scale0 = network_.fill_scale_Pa;
+    network_.homotopy = next;
     if (newton(base, s, stats, progress, NewtonStep::line_search)) {
       lambda = next;
       step *= 2.0;
       continue;
     }
     unknowns_ = x0;
-    fill_scale_ = scale0;
+    network_.fill_scale_Pa = scale0;
     step *= 0.25;
     if (++failures > 12 || step < 1e-6) return false;
   }
   return true;
 }
 
-void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel& s,
-                                     FlowSolveStatistics& stats) {
-  const Eigen::VectorXd start = unknowns_, start_scale = fill_scale_;
+void MassBalanceSolver::solve(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats) {
+  Eigen::VectorXd& fill_scale = network_.fill_scale_Pa;
+  const Eigen::VectorXd start = unknowns_, start_scale = fill_scale;
   NewtonProgress progress;
   if (newton(base, s, stats, progress, NewtonStep::line_search)) return;
-  const Eigen::VectorXd stalled = unknowns_, stalled_scale = fill_scale_;
+  const Eigen::VectorXd stalled = unknowns_, stalled_scale = fill_scale;
   // Full steps from the warm start: where the network sits on the floors of its
   // apertures, the line search stalls against their corners (design notes section 23).
   for (const NewtonStep mode : {NewtonStep::full, NewtonStep::pseudo_transient}) {
     ++stats.restarts;
     unknowns_ = start;
-    fill_scale_ = start_scale;
+    fill_scale = start_scale;
     if (newton(base, s, stats, progress, mode)) return;
   }
   // Further starts. A node that is not yet pressurised but takes in more fluid than it
@@ -58,8 +59,8 @@ void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel&
   // yet, e.g. at the first step).
   auto flooded = [&](const Eigen::VectorXd& from) {
     Eigen::VectorXd x = from;
-    for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
-      const int a = fracture_node_a_[k], b = fracture_node_b_[k];
+    for (int k = 0; k < network_.n_fractures(); ++k) {
+      const int a = network_.node_a[k], b = network_.node_b[k];
       if (from[a] <= 0.0) x[a] = std::max(x[a], from[b]);
       if (from[b] <= 0.0) x[b] = std::max(x[b], from[a]);
     }
@@ -71,7 +72,7 @@ void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel&
     for (const NewtonStep mode : {NewtonStep::line_search, NewtonStep::pseudo_transient}) {
       ++stats.restarts;
       unknowns_ = guess;
-      fill_scale_ = scale;
+      fill_scale = scale;
       if (newton(base, s, stats, progress, mode)) return;
     }
   }
@@ -81,7 +82,7 @@ void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel&
   // of the network instead of jumping to it.
   ++stats.restarts;
   unknowns_ = start;
-  fill_scale_ = start_scale;
+  fill_scale = start_scale;
   if (continuation(base, s, stats, progress)) return;
   // Last resort: the closing limit waits for the fluid. The limit (at most 5 % a step,
   // seed 2.1) is there "to facilitate convergence"; where no solve meets it, a node
@@ -92,18 +93,14 @@ void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel&
   // then do not close in this step (floor = the committed aperture); the raised floors
   // hold for the rest of the step.
   ++stats.restarts;
-  const Eigen::VectorXd floor = floor_;
-  for (std::size_t k = 0; k < trial_fractures_.size(); ++k) {
-    const int f = trial_fractures_[k];
-    if (!wetted_[f]) continue;
-    for (int end = 0; end < 2; ++end) floor_[2 * k + end] = std::max(floor_[2 * k + end], aperture_[2 * f + end]);
-  }
+  const Eigen::VectorXd floor = network_.floor_m;
+  network_.floor_m = network_.held_open_floor_m;
   for (const NewtonStep mode : {NewtonStep::line_search, NewtonStep::full, NewtonStep::pseudo_transient}) {
     unknowns_ = start;
-    fill_scale_ = start_scale;
+    fill_scale = start_scale;
     if (newton(base, s, stats, progress, mode)) return;
   }
-  floor_ = floor;
+  network_.floor_m = floor;
   std::ostringstream msg;
   // The unknowns are pressures at full nodes and scaled fill deficits (y < 0) at partly
   // filled ones, so the largest |y| is not a pressure: both are given.
@@ -111,7 +108,7 @@ void FlowNetwork::solve_mass_balance(const Eigen::VectorXd& base, ApertureModel&
   msg << "fluid flow: Newton iterations did not converge in " << settings_.max_newton_iterations
       << " iterations (mass residual " << progress.residual << " of the stored mass, last change of the unknowns "
       << progress.change << " Pa against unknowns up to " << progress.max_pressure << " Pa in magnitude; largest pressure "
-      << largest_pressure << " Pa; " << trial_nodes_.size() << " nodes)";
+      << largest_pressure << " Pa; " << network_.n_nodes() << " nodes)";
   throw ConvergenceError(msg.str());
 }
 
