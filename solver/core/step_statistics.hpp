@@ -25,6 +25,9 @@ struct StepStatistics {
   /// step), each resolved by the most open state it had in the step (seed 5.1).
   int cycle_holds = 0;
   int steps_with_cycles = 0;        ///< (sub-)steps that ended with a contact held on a cycle
+  /// Largest number of blocks that one assembly of K held as a mechanism (groups the
+  /// contact state leaves a rigid motion; dda/mechanism_holds.cpp).
+  int max_mechanism_blocks = 0;
   int coupled_state_changes = 0;    ///< fractures newly wetted by the fluid (outer iterations)
   int vertex_vertex_activations = 0;
   int active_vertex_vertex = 0;     ///< active at the end of the (last) step
@@ -62,6 +65,7 @@ struct StepStatistics {
     state_changes += later.state_changes;
     cycle_holds += later.cycle_holds;
     steps_with_cycles += later.steps_with_cycles;
+    max_mechanism_blocks = std::max(max_mechanism_blocks, later.max_mechanism_blocks);
     coupled_state_changes += later.coupled_state_changes;
     vertex_vertex_activations += later.vertex_vertex_activations;
     active_vertex_vertex = later.active_vertex_vertex;

@@ -72,6 +72,7 @@ void BlockSystem::update_block_geometry() {
 
 void BlockSystem::assemble_block_terms(double dt_s) {
   const int nb = n_blocks();
+  step_dt_s_ = dt_s;
   block_matrix_.resize(nb);
   step_loads_.setZero(6 * nb);
   for (int b = 0; b < nb; ++b) {

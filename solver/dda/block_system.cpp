@@ -38,6 +38,7 @@ void BlockSystem::begin_step(double dt_s) {
 void BlockSystem::assemble_and_factorise(StepStatistics& stats) {
   auto start = Clock::now();
   assemble_contacts();
+  stats.max_mechanism_blocks = std::max(stats.max_mechanism_blocks, held_mechanism_blocks_);
   stats.seconds_assembly += seconds_since(start);
   start = Clock::now();
   solver_.factorize(stiffness_.matrix());

@@ -74,6 +74,11 @@ struct MechanicsSettings {
   /// section 24; Shi's DDA cuts the time step on its penetration limit likewise).
   double max_overlap_fraction = 0.1;
   bool dynamic = false;                     ///< false: velocities reset every step (static)
+  /// Static analysis: blocks that the contact state of an open-close iteration does not
+  /// hold (a group whose closed contacts leave it a rigid motion) take the inertia term
+  /// of this time instead of the step's, which bounds their motion; the rest of the rock
+  /// mass keeps 2 M / dt^2 (mechanism_holds.cpp; docs/design_notes.md section 25) [s].
+  double mechanism_inertia_time_s = 0.1;
 };
 
 /// Linearised normal separation of a joint's faces at one end, the mean of the
@@ -220,6 +225,14 @@ class BlockSystem {
   void save_state(BinaryWriter& out) const;
   void restore_state(BinaryReader& in);
 
+  /// Blocks of groups that the current contact state does not hold: joined by joints
+  /// locked at both ends, with no fixed point, and left a rigid motion by their closed
+  /// contacts to other groups (in a model without fixed points the largest group, the
+  /// rock mass held by its far-field loads, does not count).
+  std::vector<int> mechanism_blocks() const;
+  /// Blocks held by the mechanism inertia at the last assembly of K.
+  int held_mechanism_blocks() const { return held_mechanism_blocks_; }
+
   /// The assembled matrix of the last open-close iteration (tests, benchmarks).
   const BlockSparseMatrix& stiffness() const { return stiffness_; }
 
@@ -236,6 +249,12 @@ class BlockSystem {
   void linearise_spring(VertexEdgeSpring& s) const;
   void linearise_contacts();
   void assemble_contacts();
+  // mechanism_holds.cpp
+  /// A group's rigid motion is free when the smallest eigenvalue of its springs' rigid
+  /// stiffness is below this fraction of the largest.
+  static constexpr double kMechanismStiffnessRatio = 1e-6;
+  /// Adds the mechanism inertia to K for the blocks of mechanism_blocks().
+  void hold_mechanisms();
   double spring_gap(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   double spring_shear(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   [[noreturn]] void throw_alm_limit(double error, double scale) const;
@@ -271,6 +290,8 @@ class BlockSystem {
   ContactSet contacts_;
   double gap_round_off_m_ = 0.0;  // gaps below this are round-off of the coordinates
   int total_vv_activations_ = 0;
+  double step_dt_s_ = 0.0;        // the step's dt, for the mechanism inertia
+  int held_mechanism_blocks_ = 0;
 
   // Per-step block terms.
   std::vector<PolygonMoments> moments_;

@@ -72,6 +72,7 @@ void BlockSystem::assemble_contacts() {
       if (c.state == ContactState::locked) add(ks, s.shear_vertex, s.shear_edge);
     }
   }
+  hold_mechanisms();
 }
 
 double BlockSystem::spring_gap(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const {

@@ -267,6 +267,9 @@ enum class FlowJacobianKind { dense, krylov };
 
 struct NumericsConfig {
   AnalysisKind analysis = AnalysisKind::static_analysis;  ///< static: velocities reset each step
+  /// Static analysis: blocks the contact state leaves a rigid motion take the inertia of
+  /// this time instead of the step's (docs/design_notes.md section 25) [s].
+  double mechanism_inertia_time_s = 0.1;
   double alm_force_tolerance = 1.0e-7;  ///< ALM stop: max |k g| <= tol * max |contact force|
   int max_alm_iterations = 200;
   int max_open_close_iterations = 200;

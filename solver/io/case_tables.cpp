@@ -434,6 +434,13 @@ const Table<NumericsConfig>& numerics_table() {
               &NumericsConfig::analysis,
               Choices<AnalysisKind>{{"static", AnalysisKind::static_analysis},
                                     {"dynamic", AnalysisKind::dynamic_analysis}}),
+       number({"mechanism_inertia_time", "s", "",
+               "static analysis: a group of blocks that its closed contacts leave a rigid motion (joined by "
+               "joints locked at both ends, touching the rest only through sliding contacts along one line, "
+               "or through nothing) takes the inertia term 2 M / tau^2 of this time instead of the step's "
+               "2 M / dt^2, which at the minute-long steps of reservoir cases holds nothing; the rest of the "
+               "rock mass keeps the step's term (docs/design_notes.md section 25)"},
+              &NumericsConfig::mechanism_inertia_time_s, positive_up_to(1e6)),
        number({"alm_tolerance", "-", "§2.3 (ALM)",
                "ALM stop: max abs(k g) <= tolerance * max abs(contact force)"},
               &NumericsConfig::alm_force_tolerance, positive_up_to(1)),

@@ -532,6 +532,7 @@ dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   s.max_open_close_iterations = c.numerics.max_open_close_iterations;
   s.max_state_flips = c.numerics.max_state_flips;
   s.dynamic = c.numerics.analysis == io::AnalysisKind::dynamic_analysis;
+  s.mechanism_inertia_time_s = c.numerics.mechanism_inertia_time_s;
   return s;
 }
 

@@ -86,6 +86,10 @@ std::vector<OutputColumn> make_fixed_columns() {
        "state changes refused to contacts caught in an open-close cycle (numerics.max_state_flips), each "
        "resolved by its most open state of the step (seed 5.1); > 0: the step ended on a cycle",
        [](const StepContext& c) { return double(c.stats.cycle_holds); }},
+      {"mechanism_blocks", "-",
+       "largest number of blocks held as a mechanism at one assembly of the stiffness matrix: groups that "
+       "their closed contacts leave a rigid motion, given the inertia of numerics.mechanism_inertia_time",
+       [](const StepContext& c) { return double(c.stats.max_mechanism_blocks); }},
       {"alm_stall_mismatch", "-",
        "largest gap or shear left at a stall, over the contact's length (a stall is accepted only below 1e-6)",
        [](const StepContext& c) { return c.stats.max_alm_stall_mismatch; }},

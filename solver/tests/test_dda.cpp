@@ -364,6 +364,7 @@ TEST(DdaOverlap, StepEndingWithFacesPassedThroughEachOtherIsRejected) {
   for (const double load_fraction : {1.0, 0.05}) {
     MechanicsSettings settings = alm_settings(25e9);
     settings.max_state_flips = 0;
+    settings.mechanism_inertia_time_s = 1e6;  // the free block keeps the step's inertia
     BlockSystem system(m, {Material{}}, settings);
     system.add_fixed_point({0.0, 0.0});
     system.add_fixed_point({0.0, 1.0});
@@ -381,6 +382,59 @@ TEST(DdaOverlap, StepEndingWithFacesPassedThroughEachOtherIsRejected) {
     } else {
       EXPECT_NO_THROW(step(system, 1.0));
     }
+  }
+}
+
+}  // namespace
+}  // namespace hfdda::dda
+
+namespace hfdda::dda {
+namespace {
+
+/// Two unit squares side by side, the left one fixed, the joint between them open and
+/// never closing: the right block is held by nothing but its inertia. It is pulled
+/// away (+x) by 1 kN for one static step of 1 s; returns how far it moved [m].
+double free_block_pull(double mechanism_inertia_time_s, std::vector<int>* mechanism = nullptr) {
+  mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
+  for (auto& j : m.joints) j.properties.initially_open = true;
+  MechanicsSettings settings = alm_settings(25e9);
+  settings.max_state_flips = 0;
+  settings.mechanism_inertia_time_s = mechanism_inertia_time_s;
+  BlockSystem system(m, {Material{}}, settings);
+  system.add_fixed_point({0.0, 0.0});
+  system.add_fixed_point({0.0, 1.0});
+  system.add_point_load({1.5, 0.5}, {1000.0, 0.0});
+  auto mean_x = [&](int b) {
+    double x = 0.0;
+    for (int k = 0; k < system.n_corners(b); ++k) x += system.corner(b, k).x() / system.n_corners(b);
+    return x;
+  };
+  const int right = mean_x(0) > mean_x(1) ? 0 : 1;
+  const double x0 = system.corner(right, 0).x();
+  step(system, 1.0);
+  if (mechanism) *mechanism = system.mechanism_blocks();
+  return system.corner(right, 0).x() - x0;
+}
+
+TEST(DdaMechanism, BlockThatNoContactHoldsTakesTheMechanismInertia) {
+  // 2 M / tau^2 with tau = 0.1 s: 1 kN moves the 1 m^2 block F tau^2 / (2 rho A); with tau
+  // no shorter than the step, the step's own 2 M / dt^2 (dt = 1 s).
+  const double rho = Material{}.density_kg_m3;
+  std::vector<int> mechanism;
+  EXPECT_NEAR(free_block_pull(0.1, &mechanism), 1000.0 * 0.01 / (2.0 * rho), 1e-12);
+  EXPECT_EQ(mechanism.size(), 1u);
+  EXPECT_NEAR(free_block_pull(1e6), 1000.0 / (2.0 * rho), 1e-10);
+}
+
+TEST(DdaMechanism, BondedRockMassIsNoMechanism) {
+  // Every joint locked: with fixed points the one group holds them; without, the group is
+  // the rock mass held by its far-field loads. Neither is a mechanism.
+  const mesh::Mesh m = small_mesh(4, 3, 1.0, mesh::CellSplit::two);
+  for (const bool fixed : {true, false}) {
+    BlockSystem system(m, {Material{}}, alm_settings(25e9));
+    if (fixed) system.add_fixed_point({0.0, 0.0});
+    system.begin_step(60.0);
+    EXPECT_TRUE(system.mechanism_blocks().empty());
   }
 }
 
