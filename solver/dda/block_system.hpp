@@ -230,8 +230,6 @@ class BlockSystem {
   /// contacts to other groups (in a model without fixed points the largest group, the
   /// rock mass held by its far-field loads, does not count).
   std::vector<int> mechanism_blocks() const;
-  /// Blocks held by the mechanism inertia at the last assembly of K.
-  int held_mechanism_blocks() const { return held_mechanism_blocks_; }
 
   /// The assembled matrix of the last open-close iteration (tests, benchmarks).
   const BlockSparseMatrix& stiffness() const { return stiffness_; }

@@ -62,18 +62,29 @@ std::vector<int> BlockSystem::mechanism_blocks() const {
   if (loads_.fixed_points.empty())
     supported[std::max_element(size.begin(), size.end()) - size.begin()] = 1;
 
-  // Per group, the stiffness of its rigid motion (u, v, theta L) against the closed
+  // The groups nothing holds, numbered; in a bonded rock mass there are none, and the
+  // contacts need not be visited.
+  std::vector<int> free_index(nb, -1);
+  std::vector<Vec2> free_centre;
+  std::vector<double> free_length;
+  for (int g = 0; g < nb; ++g)
+    if (size[g] > 0 && !supported[g]) {
+      free_index[g] = static_cast<int>(free_centre.size());
+      free_centre.push_back(moment[g] / area[g]);
+      free_length.push_back(std::sqrt(std::abs(area[g])));
+    }
+  if (free_centre.empty()) return {};
+
+  // Per free group, the stiffness of its rigid motion (u, v, theta L) against the closed
   // contacts to other groups, with unit springs: only its rank matters.
-  std::vector<Eigen::Matrix3d> rigid(nb, Eigen::Matrix3d::Zero());
+  std::vector<Eigen::Matrix3d> rigid(free_centre.size(), Eigen::Matrix3d::Zero());
   auto add_row = [&](int b, const Row6& row) {
-    const int g = group[b];
-    if (supported[g]) return;
-    const Vec2 centre = moment[g] / area[g];
-    const double length = std::sqrt(std::abs(area[g]));
-    const Vec2 r = moments_[b].centroid - centre;
+    const int i = free_index[group[b]];
+    if (i < 0) return;
+    const Vec2 r = moments_[b].centroid - free_centre[i];
     // Block DOFs of a rigid motion of the group: translation plus theta x r, rotation theta.
-    const Eigen::RowVector3d a(row[0], row[1], (row[2] - r.y() * row[0] + r.x() * row[1]) / length);
-    rigid[g] += a.transpose() * a;
+    const Eigen::RowVector3d a(row[0], row[1], (row[2] - r.y() * row[0] + r.x() * row[1]) / free_length[i]);
+    rigid[i] += a.transpose() * a;
   };
   for (const auto& c : contacts) {
     if (c.state == ContactState::open || (c.joint < 0 && !c.vertex_vertex_active)) continue;
@@ -89,15 +100,14 @@ std::vector<int> BlockSystem::mechanism_blocks() const {
     }
   }
   // A group is a mechanism when some rigid motion stretches none of its springs.
-  std::vector<char> mechanism(nb, 0);
-  for (int g = 0; g < nb; ++g) {
-    if (supported[g] || size[g] == 0) continue;
-    const Eigen::Vector3d eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(rigid[g], Eigen::EigenvaluesOnly).eigenvalues();
-    mechanism[g] = eig[0] <= kMechanismStiffnessRatio * eig[2];
+  std::vector<char> mechanism(rigid.size(), 0);
+  for (std::size_t i = 0; i < rigid.size(); ++i) {
+    const Eigen::Vector3d eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(rigid[i], Eigen::EigenvaluesOnly).eigenvalues();
+    mechanism[i] = eig[0] <= kMechanismStiffnessRatio * eig[2];
   }
   std::vector<int> blocks;
   for (int b = 0; b < nb; ++b)
-    if (mechanism[group[b]]) blocks.push_back(b);
+    if (free_index[group[b]] >= 0 && mechanism[free_index[group[b]]]) blocks.push_back(b);
   return blocks;
 }
 
