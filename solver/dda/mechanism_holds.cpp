@@ -56,10 +56,22 @@ std::vector<int> BlockSystem::mechanism_blocks() const {
     area[group[b]] += moments_[b].area;
     moment[group[b]] += moments_[b].area * moments_[b].centroid;
   }
-  for (const auto& fp : loads_.fixed_points) supported[group[fp.block]] = 1;
-  // Without fixed points the rock mass (the largest group) is held by balanced far-field
-  // loads: its rigid-body motion is the model's, not a mechanism of the contact state.
-  if (loads_.fixed_points.empty())
+  // Two fixed points at different places hold a group; one is a pin it may turn about (a
+  // corner group of the boundary ring cut off by open joints turned about its corner by
+  // kilometres, section 25), so a pinned group is tested with its pin among its springs.
+  std::vector<int> first_pin(nb, -1);
+  for (int k = 0; k < static_cast<int>(loads_.fixed_points.size()); ++k) {
+    const auto& fp = loads_.fixed_points[k];
+    int& pin = first_pin[group[fp.block]];
+    if (pin < 0)
+      pin = k;
+    else if ((loads_.fixed_points[pin].anchor - fp.anchor).norm() > 1e-9 * std::sqrt(std::abs(area[group[fp.block]])))
+      supported[group[fp.block]] = 1;
+  }
+  // Where no group is held by two fixed points, the rock mass (the largest group) is held
+  // by balanced far-field loads: its rigid-body motion is the model's (no fixed point, or
+  // one), not a mechanism of the contact state.
+  if (std::find(supported.begin(), supported.end(), 1) == supported.end())
     supported[std::max_element(size.begin(), size.end()) - size.begin()] = 1;
 
   // The groups nothing holds, numbered; in a bonded rock mass there are none, and the
@@ -86,6 +98,14 @@ std::vector<int> BlockSystem::mechanism_blocks() const {
     const Eigen::RowVector3d a(row[0], row[1], (row[2] - r.y() * row[0] + r.x() * row[1]) / free_length[i]);
     rigid[i] += a.transpose() * a;
   };
+  for (const auto& fp : loads_.fixed_points) {
+    const int i = free_index[group[fp.block]];
+    if (i < 0) continue;
+    const Vec2 r = fp.anchor - free_centre[i];
+    for (const Eigen::RowVector3d& a : {Eigen::RowVector3d(1.0, 0.0, -r.y() / free_length[i]),
+                                       Eigen::RowVector3d(0.0, 1.0, r.x() / free_length[i])})
+      rigid[i] += a.transpose() * a;
+  }
   for (const auto& c : contacts) {
     if (c.state == ContactState::open || (c.joint < 0 && !c.vertex_vertex_active)) continue;
     for (int k = 0; k < c.n_springs; ++k) {

@@ -426,6 +426,22 @@ TEST(DdaMechanism, BlockThatNoContactHoldsTakesTheMechanismInertia) {
   EXPECT_NEAR(free_block_pull(1e6), 1000.0 / (2.0 * rho), 1e-10);
 }
 
+TEST(DdaMechanism, GroupPinnedAtOnePointIsAMechanism) {
+  // The right square, cut off by the open joint, fixed at one corner may turn about it;
+  // fixed at two corners it may not. The left square is fixed at two corners throughout.
+  mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
+  for (auto& j : m.joints) j.properties.initially_open = true;
+  for (const bool second_pin : {false, true}) {
+    BlockSystem system(m, {Material{}}, alm_settings(25e9));
+    system.add_fixed_point({0.0, 0.0});
+    system.add_fixed_point({0.0, 1.0});
+    system.add_fixed_point({2.0, 0.0});
+    if (second_pin) system.add_fixed_point({2.0, 1.0});
+    system.begin_step(60.0);
+    EXPECT_EQ(system.mechanism_blocks().size(), second_pin ? 0u : 1u) << "second pin " << second_pin;
+  }
+}
+
 TEST(DdaMechanism, BondedRockMassIsNoMechanism) {
   // Every joint locked: with fixed points the one group holds them; without, the group is
   // the rock mass held by its far-field loads. Neither is a mechanism.
