@@ -17,7 +17,9 @@
 #include "coupling/coupled_step.hpp"
 #include "coupling/prescribed_pressure.hpp"
 #include "dda/block_system.hpp"
+#include "io/case_config.hpp"
 #include "mesh/mesh.hpp"
+#include "simulation/model.hpp"
 
 namespace {
 
@@ -132,6 +134,153 @@ void BM_FactorizeK(benchmark::State& state) {
   state.counters["nnz_K_lower"] = static_cast<double>(system->system->stiffness().matrix().nonZeros());
 }
 
+
+// Low-rank changes of K against a new factorisation (docs/design_notes.md section 26).
+// A contact-state change adds or removes a few penalty springs k e e^T (e: 12 entries
+// on two blocks): locked -> sliding removes a contact's two shear springs (rank 2), a
+// joint opening removes 2 x (normal + shear) springs at each of its ends (rank 8).
+// range(0): 0 the KGD case at dx = 0.5 m (verification/kgd/base.yaml, 5,188 blocks,
+// K after 4 steps), 1 the 64-cell square of BM_DdaSteadyStep (16,384 blocks, after one
+// step). Per round, in ms: (a) one supernodal numeric factorisation; (b) the copy and
+// conversion of the factor to simplicial LDL' (the first downdate of rank 2 less a later
+// one); (c) cholmod_updown of rank r = 2, 8, 32, downdate and update; (d) one solve and
+// a 64-column solve with the supernodal and the simplicial factor, and r-column
+// supernodal solves (the cost of the Woodbury identity's K^-1 C). resid_*: |K x - b| / |b|
+// after a net downdate of rank 32 (the 8 nearest locked contacts opened), with the
+// modified factor (updown, woodbury) and with a new factorisation of the same K (fresh).
+// e_woodbury*: modify() with the Woodbury identity for rank r (W = K0^-1 C and M);
+// d_solve*_woodbury32: solves with a rank-32 Woodbury correction.
+struct LowRankCase {
+  std::unique_ptr<DdaCase> square;
+  std::unique_ptr<simulation::Model> kgd;
+  const dda::BlockSystem& system() const { return kgd ? *kgd->system : *square->system; }
+};
+
+LowRankCase make_low_rank_case(int which) {
+  LowRankCase c;
+  if (which == 0) {
+    const io::CaseConfig config = io::load_case_file(std::string(HFDDA_SOURCE_DIR) + "/verification/kgd/base.yaml");
+    c.kgd = std::make_unique<simulation::Model>(simulation::build_model(config));
+    for (int s = 0; s < 4; ++s) c.kgd->step->advance(config.time.dt_s, config.numerics.max_step_cuts);
+  } else {
+    c.square = make_system(64);
+    c.square->step(1.0);
+  }
+  return c;
+}
+
+/// The spring terms of the locked joint contacts nearest the origin (where the crack is),
+/// four per contact: normal and shear of its two springs, weight 1/2 each.
+std::vector<dda::SpringTerm> nearest_locked_springs(const dda::BlockSystem& system, int count) {
+  std::vector<std::pair<double, int>> by_distance;
+  for (int ci = 0; ci < static_cast<int>(system.contacts().size()); ++ci) {
+    const dda::Contact& c = system.contacts()[ci];
+    if (c.joint >= 0 && c.state == dda::ContactState::locked)
+      by_distance.emplace_back(system.mesh().points[c.point].norm(), ci);
+  }
+  std::sort(by_distance.begin(), by_distance.end());
+  const double kn = system.settings().normal_stiffness_N_m, ks = system.settings().shear_stiffness_N_m;
+  std::vector<dda::SpringTerm> terms;
+  for (const auto& [distance, ci] : by_distance) {
+    for (const auto& s : system.contacts()[ci].springs) {
+      terms.push_back({s.vertex_block, s.edge_block, s.gap_vertex, s.gap_edge, 0.5 * kn});
+      terms.push_back({s.vertex_block, s.edge_block, s.shear_vertex, s.shear_edge, 0.5 * ks});
+    }
+    if (static_cast<int>(terms.size()) >= count) break;
+  }
+  terms.resize(count);
+  return terms;
+}
+
+double relative_residual(const dda::BlockSparseMatrix& k, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+  return (k.multiply(x) - b).norm() / b.norm();
+}
+
+void BM_LowRankK(benchmark::State& state) {
+  const bench::AdjacentCalibration calibration(state);
+  const LowRankCase low_rank = make_low_rank_case(static_cast<int>(state.range(0)));
+  const dda::BlockSystem& system = low_rank.system();
+  const dda::BlockSparseMatrix& k = system.stiffness();
+  const std::vector<dda::SpringTerm> springs = nearest_locked_springs(system, 32);
+  auto first = [&](int r) { return std::vector<dda::SpringTerm>(springs.begin(), springs.begin() + r); };
+  auto removed = [&](int r) {
+    std::vector<dda::SpringTerm> terms = first(r);
+    for (auto& t : terms) t.stiffness = -t.stiffness;
+    return terms;
+  };
+  const int n = 6 * system.n_blocks();
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+  const Eigen::MatrixXd b64 = Eigen::MatrixXd::Random(n, 64);
+  using Clock = std::chrono::steady_clock;
+  auto ms = [](Clock::time_point start) { return 1e3 * std::chrono::duration<double>(Clock::now() - start).count(); };
+  auto timed = [&](const char* name, auto&& work) {
+    const auto start = Clock::now();
+    work();
+    state.counters[name] += ms(start);
+  };
+  dda::SpdSolver solver;
+  solver.factorize(k.matrix());  // symbolic analysis outside the rounds
+  for (auto _ : state) {
+    timed("a_factorize_ms", [&] { solver.factorize(k.matrix()); });
+    timed("d_solve1_super_ms", [&] { benchmark::DoNotOptimize(solver.solve(b)); });
+    timed("d_solve64_super_ms", [&] { benchmark::DoNotOptimize(solver.solve(b64)); });
+    timed("d_solve8_super_ms", [&] { benchmark::DoNotOptimize(solver.solve(Eigen::MatrixXd(b64.leftCols(8)))); });
+    timed("d_solve32_super_ms", [&] { benchmark::DoNotOptimize(solver.solve(Eigen::MatrixXd(b64.leftCols(32)))); });
+    double first_downdate_ms = 0.0;
+    {
+      const auto start = Clock::now();
+      solver.modify(removed(2), dda::LowRankMethod::updown);
+      first_downdate_ms = ms(start);
+    }
+    solver.modify(first(2), dda::LowRankMethod::updown);
+    for (int r : {2, 8, 32}) {
+      const std::string rank = std::to_string(r);
+      const auto start = Clock::now();
+      solver.modify(removed(r), dda::LowRankMethod::updown);
+      const double downdate_ms = ms(start);
+      state.counters["c_downdate" + rank + "_ms"] += downdate_ms;
+      if (r == 2) state.counters["b_convert_ms"] += first_downdate_ms - downdate_ms;
+      timed(("c_update" + rank + "_ms").c_str(), [&] { solver.modify(first(r), dda::LowRankMethod::updown); });
+    }
+    timed("d_solve1_simplicial_ms", [&] { benchmark::DoNotOptimize(solver.solve(b)); });
+    timed("d_solve64_simplicial_ms", [&] { benchmark::DoNotOptimize(solver.solve(b64)); });
+    state.counters["resid_restored"] += relative_residual(k, solver.solve(b), b);
+    // Woodbury: the supernodal factor kept, W = K0^-1 C by one r-column solve.
+    for (int r : {2, 8, 32}) {
+      solver.factorize(k.matrix());
+      timed(("e_woodbury" + std::to_string(r) + "_ms").c_str(), [&] { solver.modify(removed(r)); });
+    }
+    timed("d_solve1_woodbury32_ms", [&] { benchmark::DoNotOptimize(solver.solve(b)); });
+    timed("d_solve64_woodbury32_ms", [&] { benchmark::DoNotOptimize(solver.solve(b64)); });
+  }
+  for (const char* name : {"a_factorize_ms", "b_convert_ms", "c_downdate2_ms", "c_update2_ms", "c_downdate8_ms",
+                           "c_update8_ms", "c_downdate32_ms", "c_update32_ms", "d_solve1_super_ms",
+                           "d_solve64_super_ms", "d_solve8_super_ms", "d_solve32_super_ms", "d_solve1_simplicial_ms",
+                           "d_solve64_simplicial_ms", "resid_restored", "e_woodbury2_ms", "e_woodbury8_ms",
+                           "e_woodbury32_ms", "d_solve1_woodbury32_ms", "d_solve64_woodbury32_ms"})
+    state.counters[name] = benchmark::Counter(state.counters[name], benchmark::Counter::kAvgIterations);
+
+  // Accuracy of a net downdate against a new factorisation of the same matrix.
+  dda::BlockSparseMatrix opened = k;
+  for (const dda::SpringTerm& t : springs) {
+    opened.add_diagonal(t.block_a, -t.stiffness * t.row_a.transpose() * t.row_a);
+    opened.add_diagonal(t.block_b, -t.stiffness * t.row_b.transpose() * t.row_b);
+    opened.add_coupling(opened.coupling_slot(t.block_a, t.block_b), t.block_a, t.block_b,
+                        -t.stiffness * t.row_a.transpose() * t.row_b);
+  }
+  for (auto method : {dda::LowRankMethod::updown, dda::LowRankMethod::woodbury}) {
+    solver.factorize(k.matrix());
+    solver.modify(removed(32), method);
+    state.counters[method == dda::LowRankMethod::updown ? "resid_updown" : "resid_woodbury"] =
+        relative_residual(opened, solver.solve(b), b);
+  }
+  dda::SpdSolver fresh;
+  fresh.factorize(opened.matrix());
+  state.counters["resid_fresh"] = relative_residual(opened, fresh.solve(b), b);
+  state.counters["blocks"] = system.n_blocks();
+  state.counters["nnz_K_lower"] = static_cast<double>(k.matrix().nonZeros());
+}
+
 // Cells per side n gives 4 n^2 blocks: 16 -> 1024, 32 -> 4096, 64 -> 16384.
 BENCHMARK(BM_DdaFirstStep)->ArgName("cells")->Arg(16)->Arg(32)->Arg(64)
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
@@ -139,6 +288,7 @@ BENCHMARK(BM_DdaSteadyStep)->ArgNames({"cells", "threads"})->ArgsProduct({{16, 3
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 BENCHMARK(BM_FactorizeK)->ArgNames({"cells", "threads"})->ArgsProduct({{16, 32, 64}, {1, 2}})
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+BENCHMARK(BM_LowRankK)->ArgName("square16k")->DenseRange(0, 1)->Iterations(5)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

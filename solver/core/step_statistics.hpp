@@ -19,6 +19,10 @@ struct StepStatistics {
   /// (reported; the stop test is on the contact forces, see docs/seed_errata.md, erratum 2).
   double max_alm_displacement_change = 0.0;
   int factorizations = 0;
+  /// Assemblies of K applied to the step's factorisation as a low-rank correction
+  /// instead (numerics.low_rank_updates), the springs they changed, and corrections
+  /// dropped by their check solve.
+  int low_rank_updates = 0, low_rank_terms = 0, low_rank_rejections = 0;
   int bonds_broken = 0;
   int state_changes = 0;            ///< contact state changes applied
   /// Changes refused to contacts caught in an open-close cycle (over max_state_flips in a
@@ -44,9 +48,12 @@ struct StepStatistics {
   long flow_inexact_linear_solves = 0;  ///< GMRES solves stopped at their limit (inexact Newton steps)
   int max_flow_nodes = 0;
   double max_flow_residual = 0.0;   ///< largest relative mass residual of a flow solve
+  int sensitivity_builds = 0;       ///< S = J K^-1 B built by its solves
+  int sensitivity_corrections = 0;  ///< S corrected for low-rank changes of K instead
 
   // --- wall-clock time [s] ----------------------------------------------------------
   double seconds_assembly = 0.0, seconds_factorization = 0.0, seconds_solve = 0.0;
+  double seconds_low_rank = 0.0;     ///< low-rank corrections of K's factorisation and their checks
   double seconds_sensitivity = 0.0;  ///< building S = J K^-1 B
   double seconds_flow = 0.0;         ///< flow solves and the blocks' response to the pressures
   double seconds_total = 0.0;
@@ -61,6 +68,9 @@ struct StepStatistics {
     max_alm_stall_mismatch = std::max(max_alm_stall_mismatch, later.max_alm_stall_mismatch);
     max_alm_displacement_change = std::max(max_alm_displacement_change, later.max_alm_displacement_change);
     factorizations += later.factorizations;
+    low_rank_updates += later.low_rank_updates;
+    low_rank_terms += later.low_rank_terms;
+    low_rank_rejections += later.low_rank_rejections;
     bonds_broken += later.bonds_broken;
     state_changes += later.state_changes;
     cycle_holds += later.cycle_holds;
@@ -80,8 +90,11 @@ struct StepStatistics {
     flow_inexact_linear_solves += later.flow_inexact_linear_solves;
     max_flow_nodes = std::max(max_flow_nodes, later.max_flow_nodes);
     max_flow_residual = std::max(max_flow_residual, later.max_flow_residual);
+    sensitivity_builds += later.sensitivity_builds;
+    sensitivity_corrections += later.sensitivity_corrections;
     seconds_assembly += later.seconds_assembly;
     seconds_factorization += later.seconds_factorization;
+    seconds_low_rank += later.seconds_low_rank;
     seconds_solve += later.seconds_solve;
     seconds_sensitivity += later.seconds_sensitivity;
     seconds_flow += later.seconds_flow;

@@ -76,6 +76,11 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     return;
   }
   operator_.reset();
+  if (!topology_changed_ && correct_sensitivity(solver)) {
+    ++stats_.sensitivity_corrections;
+    stats_.seconds_sensitivity += seconds_since(start);
+    return;
+  }
 
   // S = J K^-1 B, a few dozen columns per solve.
   sensitivity_.setZero(2 * nf, n);
@@ -92,8 +97,45 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
           g.row_a * x.middleRows<6>(6 * g.block_a) + g.row_b * x.middleRows<6>(6 * g.block_b);
     }
   }
+  // The base of later corrections: S of the factorised K0, without this K's changes.
+  sensitivity_base_ = sensitivity_;
+  if (solver.modified_rank() > 0) sensitivity_base_ += low_rank_correction(solver);
+  base_factorization_ = solver.factorizations();
+  base_gaps_ = gaps_;
+  ++stats_.sensitivity_builds;
   topology_changed_ = false;
   stats_.seconds_sensitivity += seconds_since(start);
+}
+
+bool HydroMechanicalCoupling::correct_sensitivity(const dda::SpdSolver& solver) {
+  const int rank = solver.modified_rank();
+  if (base_factorization_ != solver.factorizations() || rank == 0 ||
+      solver.woodbury_solutions().cols() != rank || base_gaps_.size() != gaps_.size() ||
+      sensitivity_base_.cols() != static_cast<Eigen::Index>(loads_.size()))
+    return false;
+  for (std::size_t e = 0; e < gaps_.size(); ++e) {
+    const dda::JointEndGap& a = gaps_[e];
+    const dda::JointEndGap& b = base_gaps_[e];
+    if (a.block_a != b.block_a || a.block_b != b.block_b || a.row_a != b.row_a || a.row_b != b.row_b) return false;
+  }
+  sensitivity_ = sensitivity_base_ - low_rank_correction(solver);
+  return true;
+}
+
+Eigen::MatrixXd HydroMechanicalCoupling::low_rank_correction(const dda::SpdSolver& solver) const {
+  // K^-1 = K0^-1 - W M^-1 W^T with W = K0^-1 C: S = J K0^-1 B - (J W) M^-1 (W^T B).
+  const Eigen::MatrixXd& w = solver.woodbury_solutions();
+  const int n_ends = static_cast<int>(gaps_.size());
+  const int n_nodes = static_cast<int>(loads_.size());
+  Eigen::MatrixXd jw(n_ends, w.cols());
+  for (int e = 0; e < n_ends; ++e) {
+    const auto& g = gaps_[e];
+    jw.row(e) = g.row_a * w.middleRows<6>(6 * g.block_a) + g.row_b * w.middleRows<6>(6 * g.block_b);
+  }
+  Eigen::MatrixXd wtb = Eigen::MatrixXd::Zero(w.cols(), n_nodes);
+  for (int i = 0; i < n_nodes; ++i)
+    for (const NodeLoad& l : loads_[i]) wtb.col(i).noalias() += w.middleRows<6>(6 * l.block).transpose() * l.force;
+  return jw * solver.solve_capacitance(wtb);
 }
 
 void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::VectorXd& d) {
@@ -171,6 +213,8 @@ void HydroMechanicalCoupling::add_statistics(StepStatistics& step) const {
   step.max_flow_nodes = std::max(step.max_flow_nodes, stats_.max_nodes);
   step.max_flow_residual = std::max(step.max_flow_residual, stats_.max_relative_residual);
   step.seconds_sensitivity += stats_.seconds_sensitivity;
+  step.sensitivity_builds += stats_.sensitivity_builds;
+  step.sensitivity_corrections += stats_.sensitivity_corrections;
   step.seconds_flow += stats_.seconds_flow;
 }
 

@@ -40,6 +40,8 @@ struct CouplingStatistics {
   int max_nodes = 0;
   double max_relative_residual = 0.0;
   double seconds_sensitivity = 0.0;  ///< building S = J K^-1 B
+  int sensitivity_builds = 0;        ///< S built by its solves
+  int sensitivity_corrections = 0;   ///< S corrected for low-rank changes of K instead
   double seconds_flow = 0.0;
   long sensitivity_products = 0;  ///< products with the operator S (krylov)
   long krylov_iterations = 0;
@@ -69,6 +71,11 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
 
  private:
   void refresh_pressurised();
+  /// S for a low-rank change of the K that sensitivity_base_ was built with (Woodbury
+  /// identity, dda::SpdSolver::modify); false if S must be built by its solves.
+  bool correct_sensitivity(const dda::SpdSolver& solver);
+  /// (J W) M^-1 (W^T B): what the low-rank changes of K take off J K0^-1 B.
+  Eigen::MatrixXd low_rank_correction(const dda::SpdSolver& solver) const;
   bool use_krylov() const { return jacobian_ == FlowJacobian::krylov; }
 
   fluid::FlowNetwork& network_;
@@ -77,6 +84,10 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   std::vector<dda::JointEndGap> gaps_;           // per trial fracture end
   std::vector<std::vector<NodeLoad>> loads_;     // per trial node
   Eigen::MatrixXd sensitivity_;                  // S = J K^-1 B [m/Pa] (dense path)
+  // J K0^-1 B for the factorisation K0 numbered base_factorization_, with its J.
+  Eigen::MatrixXd sensitivity_base_;
+  int base_factorization_ = -1;
+  std::vector<dda::JointEndGap> base_gaps_;
   std::vector<std::array<int, 2>> nodes_of_fracture_;  // per trial fracture
   std::unique_ptr<ApertureOperator> operator_;   // S as an operator (krylov path)
   Eigen::VectorXd work_;

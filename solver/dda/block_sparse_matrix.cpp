@@ -1,6 +1,9 @@
 #include "dda/block_sparse_matrix.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cholmod.h>
+#include <cmath>
 #include <chrono>
 #include <stdexcept>
 #include <string>
@@ -104,25 +107,209 @@ void relax_supernodes(cholmod_common& common) {
   common.nrelax[2] = 192;
 }
 
+/// CHOLMOD's view of the lower triangle (no copy).
+cholmod_sparse view_lower(const Eigen::SparseMatrix<double>& lower) {
+  cholmod_sparse a{};
+  a.nrow = a.ncol = static_cast<std::size_t>(lower.rows());
+  a.nzmax = static_cast<std::size_t>(lower.nonZeros());
+  a.p = const_cast<int*>(lower.outerIndexPtr());
+  a.i = const_cast<int*>(lower.innerIndexPtr());
+  a.x = const_cast<double*>(lower.valuePtr());
+  a.stype = -1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
+cholmod_dense view_dense(const Eigen::MatrixXd& b) {
+  cholmod_dense d{};
+  d.nrow = d.d = static_cast<std::size_t>(b.rows());
+  d.ncol = static_cast<std::size_t>(b.cols());
+  d.nzmax = d.nrow * d.ncol;
+  d.x = const_cast<double*>(b.data());
+  d.xtype = CHOLMOD_REAL;
+  d.dtype = CHOLMOD_DOUBLE;
+  return d;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
+
+struct SpdSolver::Cholmod {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;    // supernodal LL' of the last factorize()
+  cholmod_factor* modified = nullptr;  // simplicial LDL' with the springs modified since
+  std::vector<int> new_row;            // original unknown -> row of the permuted factor
+  Cholmod() {
+    cholmod_start(&common);
+    common.final_asis = 1;
+    common.supernodal = CHOLMOD_SUPERNODAL;
+    relax_supernodes(common);
+  }
+  ~Cholmod() {
+    free_modified();
+    if (factor) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+  Cholmod(const Cholmod&) = delete;
+  Cholmod& operator=(const Cholmod&) = delete;
+  void free_modified() {
+    if (modified) cholmod_free_factor(&modified, &common);
+  }
+  cholmod_factor* active() const { return modified ? modified : factor; }
+};
+
+SpdSolver::SpdSolver() : cholmod_(std::make_unique<Cholmod>()) {}
+SpdSolver::~SpdSolver() = default;
+SpdSolver::SpdSolver(SpdSolver&&) noexcept = default;
+SpdSolver& SpdSolver::operator=(SpdSolver&&) noexcept = default;
 
 void SpdSolver::factorize(const Eigen::SparseMatrix<double>& lower) {
   const auto start = std::chrono::steady_clock::now();
+  Cholmod& c = *cholmod_;
+  c.free_modified();
+  modified_springs_.clear();
+  woodbury_solutions_.resize(0, 0);
+  cholmod_sparse a = view_lower(lower);
   if (!analysed_) {
-    relax_supernodes(llt_.cholmod());
-    llt_.analyzePattern(lower);
+    if (c.factor) cholmod_free_factor(&c.factor, &c.common);
+    c.factor = cholmod_analyze(&a, &c.common);
+    if (!c.factor) throw std::runtime_error("CHOLMOD's symbolic analysis of K failed");
+    const int* perm = static_cast<const int*>(c.factor->Perm);
+    c.new_row.assign(c.factor->n, 0);
+    for (std::size_t k = 0; k < c.factor->n; ++k) c.new_row[perm[k]] = static_cast<int>(k);
     analysed_ = true;
   }
-  llt_.factorize(lower);
-  factorization_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  cholmod_factorize(&a, c.factor, &c.common);
+  factorization_seconds_ += seconds_since(start);
   ++factorizations_;
-  if (llt_.info() != Eigen::Success)
+  if (c.factor->minor != c.factor->n)
     throw ConvergenceError("the block stiffness matrix K is not positive definite (CHOLMOD factorisation failed); "
                            "a block is probably unconstrained");
 }
 
-Eigen::VectorXd SpdSolver::solve(const Eigen::VectorXd& rhs) const { return llt_.solve(rhs); }
+bool SpdSolver::modify(const std::vector<SpringTerm>& changes, LowRankMethod method) {
+  if (changes.empty()) return true;
+  const auto start = std::chrono::steady_clock::now();
+  Cholmod& c = *cholmod_;
+  if (!c.factor || !analysed_) throw std::logic_error("SpdSolver::modify before factorize");
+  const bool woodbury = method == LowRankMethod::woodbury;
+  if (!modified_springs_.empty() && woodbury == (c.modified != nullptr))
+    throw std::logic_error("SpdSolver::modify: one method between two factorisations");
+  const int first = modified_rank();
+  const int r = static_cast<int>(changes.size());
+  modified_springs_.insert(modified_springs_.end(), changes.begin(), changes.end());
+  bool ok = true;
+  if (woodbury) {
+    // W's new columns: K0^-1 C for the new springs, one multi-column supernodal solve.
+    const int n = static_cast<int>(c.factor->n);
+    Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(n, r);
+    for (int s = 0; s < r; ++s) {
+      const SpringTerm& t = changes[s];
+      const double scale = std::sqrt(std::abs(t.stiffness));
+      columns.col(s).segment<6>(6 * t.block_a) += scale * t.row_a.transpose();
+      columns.col(s).segment<6>(6 * t.block_b) += scale * t.row_b.transpose();
+    }
+    woodbury_solutions_.conservativeResize(n, first + r);
+    woodbury_solutions_.rightCols(r) = solve_factor(columns);
+    // M = D + C^T W (D^-1 = D for D = +-1), symmetric: its new rows and columns.
+    const int rank = first + r;
+    capacitance_.conservativeResize(rank, rank);
+    const Eigen::MatrixXd new_rows = spring_projection(woodbury_solutions_).bottomRows(r);  // C_new^T W
+    capacitance_.bottomRows(r) = new_rows;
+    capacitance_.rightCols(r) = new_rows.transpose();
+    for (int s = first; s < rank; ++s) capacitance_(s, s) += modified_springs_[s].stiffness > 0.0 ? 1.0 : -1.0;
+    capacitance_lu_.compute(capacitance_);
+    // A singular M: the modified K is singular (a downdate removed what held a block).
+    ok = std::isfinite(capacitance_lu_.rcond()) && capacitance_lu_.rcond() > 1e-14;
+  } else {
+    if (!c.modified) {
+      // cholmod_updown works on a simplicial LDL' factor: convert a copy, so that the
+      // supernodal factor keeps its storage for the next factorisation.
+      c.modified = cholmod_copy_factor(c.factor, &c.common);
+      cholmod_change_factor(CHOLMOD_REAL, false, false, true, true, c.modified, &c.common);
+    }
+    // Updates first: the matrix stays positive definite in between.
+    for (const bool update : {true, false}) {
+      std::vector<const SpringTerm*> part;
+      for (const SpringTerm& t : changes)
+        if ((t.stiffness > 0.0) == update) part.push_back(&t);
+      if (part.empty()) continue;
+      // C (permuted like the factor): column s holds sqrt(|k|) e of spring s.
+      const int columns_count = static_cast<int>(part.size());
+      cholmod_sparse* columns = cholmod_allocate_sparse(c.modified->n, columns_count, 12 * part.size(), true, true,
+                                                        0, CHOLMOD_REAL, &c.common);
+      int* p = static_cast<int*>(columns->p);
+      int* i = static_cast<int*>(columns->i);
+      double* x = static_cast<double*>(columns->x);
+      std::array<std::pair<int, double>, 12> entries;
+      int nz = 0;
+      for (int s = 0; s < columns_count; ++s) {
+        const SpringTerm& t = *part[s];
+        const double scale = std::sqrt(std::abs(t.stiffness));
+        for (int a = 0; a < 6; ++a) {
+          entries[a] = {c.new_row[6 * t.block_a + a], scale * t.row_a[a]};
+          entries[6 + a] = {c.new_row[6 * t.block_b + a], scale * t.row_b[a]};
+        }
+        std::sort(entries.begin(), entries.end());
+        p[s] = nz;
+        for (const auto& [row, value] : entries) i[nz] = row, x[nz++] = value;
+      }
+      p[columns_count] = nz;
+      ok = ok && cholmod_updown(update, columns, c.modified, &c.common) && c.common.status == CHOLMOD_OK &&
+           c.modified->minor == c.modified->n;
+      cholmod_free_sparse(&columns, &c.common);
+    }
+  }
+  modification_seconds_ += seconds_since(start);
+  return ok;
+}
 
-Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& rhs) const { return llt_.solve(rhs); }
+Eigen::MatrixXd SpdSolver::spring_projection(const Eigen::MatrixXd& y) const {
+  Eigen::MatrixXd projection(modified_rank(), y.cols());
+  for (int s = 0; s < modified_rank(); ++s) {
+    const SpringTerm& t = modified_springs_[s];
+    projection.row(s) = std::sqrt(std::abs(t.stiffness)) * (t.row_a * y.middleRows<6>(6 * t.block_a) +
+                                                  t.row_b * y.middleRows<6>(6 * t.block_b));
+  }
+  return projection;
+}
+
+Eigen::VectorXd SpdSolver::woodbury_check_solve(const Eigen::VectorXd& x_exact) const {
+  Eigen::VectorXd dct = spring_projection(x_exact);  // D C^T x
+  for (int s = 0; s < modified_rank(); ++s)
+    if (modified_springs_[s].stiffness < 0.0) dct[s] = -dct[s];
+  const Eigen::VectorXd y = x_exact + woodbury_solutions_ * dct;
+  return y - woodbury_solutions_ * capacitance_lu_.solve(spring_projection(y));
+}
+
+Eigen::MatrixXd SpdSolver::solve_capacitance(const Eigen::MatrixXd& v) const { return capacitance_lu_.solve(v); }
+
+Eigen::MatrixXd SpdSolver::solve_factor(const Eigen::MatrixXd& rhs) const {
+  Cholmod& c = *cholmod_;
+  cholmod_dense b = view_dense(rhs);
+  cholmod_dense* x = cholmod_solve(CHOLMOD_A, c.active(), &b, &c.common);
+  if (!x) throw std::runtime_error("CHOLMOD's solve failed");
+  Eigen::MatrixXd result = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(x->x), rhs.rows(), rhs.cols());
+  cholmod_free_dense(&x, &c.common);
+  return result;
+}
+
+Eigen::VectorXd SpdSolver::solve(const Eigen::VectorXd& rhs) const {
+  Eigen::MatrixXd x = solve(Eigen::MatrixXd(rhs));
+  return x.col(0);
+}
+
+Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& rhs) const {
+  Eigen::MatrixXd y = solve_factor(rhs);
+  if (woodbury_solutions_.cols() > 0) y.noalias() -= woodbury_solutions_ * capacitance_lu_.solve(spring_projection(y));
+  return y;
+}
 
 }  // namespace hfdda::dda

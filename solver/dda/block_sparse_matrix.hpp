@@ -4,8 +4,9 @@
 // can ever interact gets its slot up front, and CHOLMOD's symbolic analysis (fill-
 // reducing ordering, supernodes) is computed once and reused by every factorisation.
 
-#include <Eigen/CholmodSupport>
+#include <Eigen/LU>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -45,25 +46,82 @@ class BlockSparseMatrix {
   std::vector<Slot> slots_;
 };
 
-/// Sparse Cholesky of K with CHOLMOD (supernodal), symbolic analysis done once.
+/// One penalty spring's term k e e^T of K: e holds `row_a` on block_a's six unknowns and
+/// `row_b` on block_b's (block_a != block_b), k = `stiffness` [N/m]; as a change of K,
+/// a negative k removes the spring.
+struct SpringTerm {
+  int block_a = -1, block_b = -1;
+  Row6 row_a = Row6::Zero(), row_b = Row6::Zero();
+  double stiffness = 0.0;
+};
+
+/// How SpdSolver::modify changes the factorised K (docs/design_notes.md section 26).
+enum class LowRankMethod {
+  /// cholmod_updown on a simplicial LDL' copy of the factor; the solves use that copy.
+  updown,
+  /// Woodbury identity: the supernodal factor of K0 is kept and K = K0 + C D C^T
+  /// (D = +-1) is solved as K0^-1 b - W M^-1 C^T K0^-1 b, W = K0^-1 C, M = D + C^T W.
+  woodbury,
+};
+
+/// Sparse Cholesky of K with CHOLMOD (supernodal), symbolic analysis done once. Springs
+/// added to or removed from the factorised K can be applied without a new
+/// factorisation (modify), until the next factorize().
 class SpdSolver {
  public:
+  SpdSolver();
+  ~SpdSolver();
+  SpdSolver(SpdSolver&&) noexcept;
+  SpdSolver& operator=(SpdSolver&&) noexcept;
+  SpdSolver(const SpdSolver&) = delete;
+  SpdSolver& operator=(const SpdSolver&) = delete;
+
   /// Numeric factorisation; the first call also runs the symbolic analysis.
   /// Throws ConvergenceError if K is not positive definite.
   void factorize(const Eigen::SparseMatrix<double>& lower);
+  /// The solves from now on are of K + sum k e e^T over `changes` (k < 0: a spring
+  /// removed). Returns false if the modified matrix is found not positive definite
+  /// (updown) or its capacitance matrix singular (woodbury); factorize() again then.
+  /// One method between two factorisations.
+  bool modify(const std::vector<SpringTerm>& changes, LowRankMethod method = LowRankMethod::woodbury);
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
-  /// Several right-hand sides at once (one pass through the factor, BLAS-3).
+  /// Several right-hand sides at once (one pass through the factor, BLAS-3 when supernodal).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const;
   /// Forget the symbolic analysis (the pattern changed); the next factorize redoes it.
   void reset_pattern() { analysed_ = false; }
   int factorizations() const { return factorizations_; }
   double factorization_seconds() const { return factorization_seconds_; }
+  /// Rank-one modifications since the last factorize().
+  int modified_rank() const { return static_cast<int>(modified_springs_.size()); }
+  /// Seconds spent in modify() so far.
+  double modification_seconds() const { return modification_seconds_; }
+
+  // Woodbury: K^-1 = K0^-1 - W M^-1 W^T, for callers that keep products with K0^-1.
+  /// W = K0^-1 C (unknowns x modified_rank()).
+  const Eigen::MatrixXd& woodbury_solutions() const { return woodbury_solutions_; }
+  /// M^-1 v for v with modified_rank() rows.
+  Eigen::MatrixXd solve_capacitance(const Eigen::MatrixXd& v) const;
+  /// The Woodbury solve of K x = b for b = K x_exact, without a solve with the factor:
+  /// K0^-1 b = x_exact + W D C^T x_exact. |K x - b| then shows the digits the
+  /// capacitance matrix loses (a downdate of a stiff spring), at the cost of products.
+  Eigen::VectorXd woodbury_check_solve(const Eigen::VectorXd& x_exact) const;
 
  private:
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt_;
+  struct Cholmod;  // CHOLMOD's workspace and factors (block_sparse_matrix.cpp)
+  std::unique_ptr<Cholmod> cholmod_;
   bool analysed_ = false;
   int factorizations_ = 0;
   double factorization_seconds_ = 0.0;
+  double modification_seconds_ = 0.0;
+  // Since the last factorisation: the changes and, for the Woodbury identity, W and
+  // the LU factors of M.
+  std::vector<SpringTerm> modified_springs_;
+  Eigen::MatrixXd woodbury_solutions_;
+  Eigen::MatrixXd capacitance_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_lu_;
+  /// C^T y for the modified springs (column s of C: sqrt(|k_s|) e_s).
+  Eigen::MatrixXd spring_projection(const Eigen::MatrixXd& y) const;
+  Eigen::MatrixXd solve_factor(const Eigen::MatrixXd& rhs) const;
 };
 
 }  // namespace hfdda::dda

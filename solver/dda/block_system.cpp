@@ -29,6 +29,8 @@ BlockSystem::BlockSystem(const mesh::Mesh& mesh, std::vector<Material> materials
 // The step's frame: begin, factorise, commit or roll back
 
 void BlockSystem::begin_step(double dt_s) {
+  factor_of_this_step_ = false;  // the block terms change
+  forget_changed_contacts();
   contacts_.begin_step();
   update_block_geometry();
   assemble_block_terms(dt_s);
@@ -38,12 +40,18 @@ void BlockSystem::begin_step(double dt_s) {
 void BlockSystem::assemble_and_factorise(StepStatistics& stats) {
   auto start = Clock::now();
   assemble_contacts();
-  stats.max_mechanism_blocks = std::max(stats.max_mechanism_blocks, held_mechanism_blocks_);
+  stats.max_mechanism_blocks = std::max(stats.max_mechanism_blocks, static_cast<int>(held_blocks_.size()));
   stats.seconds_assembly += seconds_since(start);
+  start = Clock::now();
+  const bool modified = modify_factor(stats);
+  stats.seconds_low_rank += seconds_since(start);
+  if (modified) return;
   start = Clock::now();
   solver_.factorize(stiffness_.matrix());
   stats.seconds_factorization += seconds_since(start);
   ++stats.factorizations;
+  factor_of_this_step_ = true;
+  factorised_held_blocks_ = held_blocks_;
 }
 
 void BlockSystem::commit(const Eigen::VectorXd& d, double dt_s, StepStatistics& stats) {

@@ -79,6 +79,11 @@ struct MechanicsSettings {
   /// of this time instead of the step's, which bounds their motion; the rest of the rock
   /// mass keeps 2 M / dt^2 (mechanism_holds.cpp; docs/design_notes.md section 25) [s].
   double mechanism_inertia_time_s = 0.1;
+  /// Within a step, the springs that the contact-state changes of an open-close iteration
+  /// add to K or remove from it are applied to the step's factorisation as a low-rank
+  /// correction (Woodbury identity, SpdSolver::modify) instead of a new factorisation,
+  /// up to BlockSystem::kMaxLowRank springs (docs/design_notes.md section 26).
+  bool low_rank_updates = true;
 };
 
 /// Linearised normal separation of a joint's faces at one end, the mean of the
@@ -253,6 +258,29 @@ class BlockSystem {
   static constexpr double kMechanismStiffnessRatio = 1e-6;
   /// Adds the mechanism inertia to K for the blocks of mechanism_blocks().
   void hold_mechanisms();
+  // low_rank_updates.cpp
+  /// Springs changed by one assembly above which K is factorised anew: W = K0^-1 C for
+  /// r springs took 9, 17 and 100 ms for r = 2, 8 and 32 against 40 ms for a
+  /// factorisation of the KGD case's K at dx = 0.5 m (BM_LowRankK, section 26).
+  static constexpr int kMaxLowRankPerAssembly = 16;
+  /// Springs changed since the last factorisation above which K is factorised anew:
+  /// each solve then carries a correction of that rank (a 64-column solve: +27 % at 32).
+  static constexpr int kMaxLowRank = 32;
+  /// |K x - b| / |b| of a check solve above which a corrected factorisation is dropped;
+  /// a solve with a new factorisation of the KGD case's K leaves 1e-9 (section 26).
+  static constexpr double kLowRankResidual = 1e-7;
+  /// A contact's spring terms in K: normal (2 k) and shear (2 k + 1) of its springs k.
+  struct ContactTerms {
+    std::array<SpringTerm, 4> term;
+    std::array<bool, 4> present{};
+  };
+  ContactTerms contact_terms(const Contact& c) const;
+  /// Before a change to contact `ci` within a step: keeps its terms as factorised.
+  void remember_factorised_terms(int ci);
+  void forget_changed_contacts();
+  /// Applies the spring changes since the last factorisation to it when they are few and
+  /// nothing else of K changed; false: K must be factorised.
+  bool modify_factor(StepStatistics& stats);
   double spring_gap(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   double spring_shear(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   [[noreturn]] void throw_alm_limit(double error, double scale) const;
@@ -289,7 +317,7 @@ class BlockSystem {
   double gap_round_off_m_ = 0.0;  // gaps below this are round-off of the coordinates
   int total_vv_activations_ = 0;
   double step_dt_s_ = 0.0;        // the step's dt, for the mechanism inertia
-  int held_mechanism_blocks_ = 0;
+  std::vector<int> held_blocks_;  // mechanism blocks held by the last assembly
 
   // Per-step block terms.
   std::vector<PolygonMoments> moments_;
@@ -304,6 +332,11 @@ class BlockSystem {
 
   BlockSparseMatrix stiffness_;
   SpdSolver solver_;
+  // What the factorisation in solver_ (with its low-rank changes) is of.
+  bool factor_of_this_step_ = false;
+  std::vector<int> factorised_held_blocks_;
+  std::vector<std::pair<int, ContactTerms>> factorised_terms_;  // of contacts changed since
+  std::vector<char> terms_remembered_;                           // per contact
 };
 
 }  // namespace hfdda::dda

@@ -34,6 +34,7 @@ void add_spring_to_rhs(Eigen::VectorXd& f, const VertexEdgeSpring& s, double wei
 void BlockSystem::rebuild_pattern() {
   stiffness_ = BlockSparseMatrix(n_blocks(), contacts_.couplings());
   solver_.reset_pattern();
+  factor_of_this_step_ = false;
   for (auto& c : contacts_.all())
     if (c.joint >= 0 || c.vertex_vertex_active)
       for (int k = 0; k < c.n_springs; ++k)
@@ -59,17 +60,13 @@ void BlockSystem::assemble_contacts() {
   for (int b = 0; b < n_blocks(); ++b) stiffness_.add_diagonal(b, block_matrix_[b]);
   for (const auto& c : contacts_.all()) {
     if (c.state == ContactState::open) continue;
-    const double kn = normal_stiffness(c), ks = shear_stiffness(c);
-    const double w = 1.0 / c.n_springs;
-    for (int k = 0; k < c.n_springs; ++k) {
-      const auto& s = c.springs[k];
-      auto add = [&](double stiffness, const Row6& ev, const Row6& ee) {
-        stiffness_.add_diagonal(s.vertex_block, w * stiffness * ev.transpose() * ev);
-        stiffness_.add_diagonal(s.edge_block, w * stiffness * ee.transpose() * ee);
-        stiffness_.add_coupling(s.slot, s.vertex_block, s.edge_block, w * stiffness * ev.transpose() * ee);
-      };
-      add(kn, s.gap_vertex, s.gap_edge);
-      if (c.state == ContactState::locked) add(ks, s.shear_vertex, s.shear_edge);
+    const ContactTerms terms = contact_terms(c);
+    for (int k = 0; k < 4; ++k) {
+      if (!terms.present[k]) continue;
+      const SpringTerm& t = terms.term[k];
+      stiffness_.add_diagonal(t.block_a, t.stiffness * t.row_a.transpose() * t.row_a);
+      stiffness_.add_diagonal(t.block_b, t.stiffness * t.row_b.transpose() * t.row_b);
+      stiffness_.add_coupling(c.springs[k / 2].slot, t.block_a, t.block_b, t.stiffness * t.row_a.transpose() * t.row_b);
     }
   }
   hold_mechanisms();

@@ -132,14 +132,14 @@ std::vector<int> BlockSystem::mechanism_blocks() const {
 }
 
 void BlockSystem::hold_mechanisms() {
-  held_mechanism_blocks_ = 0;
+  held_blocks_.clear();
   if (settings_.dynamic || !(settings_.mechanism_inertia_time_s < step_dt_s_)) return;
   const double extra = 2.0 / (settings_.mechanism_inertia_time_s * settings_.mechanism_inertia_time_s) -
                        2.0 / (step_dt_s_ * step_dt_s_);
-  for (const int b : mechanism_blocks()) {
+  held_blocks_ = mechanism_blocks();
+  for (const int b : held_blocks_) {
     const Material& m = materials_[blocks_.material[b]];
     stiffness_.add_diagonal(b, extra * m.density_kg_m3 * displacement_matrix_gram(moments_[b]));
-    ++held_mechanism_blocks_;
   }
 }
 

@@ -140,6 +140,7 @@ void BlockSystem::describe_first_change(const Contact& c, ContactState to) {
 }
 
 void BlockSystem::apply_change(const ContactChange& ch, const Eigen::VectorXd& d, StepStatistics& stats) {
+  remember_factorised_terms(ch.contact);
   Contact& c = contacts_[ch.contact];
   if (ch.breaks_bond) {
     c.bonded = false;

@@ -270,6 +270,9 @@ struct NumericsConfig {
   /// Static analysis: blocks the contact state leaves a rigid motion take the inertia of
   /// this time instead of the step's (docs/design_notes.md section 25) [s].
   double mechanism_inertia_time_s = 0.1;
+  /// Contact-state changes within a step applied to K's factorisation as a low-rank
+  /// correction (docs/design_notes.md section 26).
+  bool low_rank_updates = true;
   double alm_force_tolerance = 1.0e-7;  ///< ALM stop: max |k g| <= tol * max |contact force|
   int max_alm_iterations = 200;
   int max_open_close_iterations = 200;

@@ -441,6 +441,13 @@ const Table<NumericsConfig>& numerics_table() {
                "2 M / dt^2, which at the minute-long steps of reservoir cases holds nothing; the rest of the "
                "rock mass keeps the step's term (docs/design_notes.md section 25)"},
               &NumericsConfig::mechanism_inertia_time_s, positive_up_to(1e6)),
+       boolean({"low_rank_updates", "", "none (HFDDA): the seed factorises K at every open-close iteration",
+                "within a time step, the penalty springs that the contact-state changes of an open-close "
+                "iteration add or remove (at most 16 at a time and 32 since the step's factorisation of K, and "
+                "only when the mechanism holds stay the same) are applied to that factorisation as a low-rank correction "
+                "(Woodbury identity) instead of a new factorisation; a correction whose check solve leaves a "
+                "residual above 1e-7 is dropped for a new factorisation (docs/design_notes.md section 26)"},
+               &NumericsConfig::low_rank_updates),
        number({"alm_tolerance", "-", "§2.3 (ALM)",
                "ALM stop: max abs(k g) <= tolerance * max abs(contact force)"},
               &NumericsConfig::alm_force_tolerance, positive_up_to(1)),

@@ -533,6 +533,7 @@ dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   s.max_state_flips = c.numerics.max_state_flips;
   s.dynamic = c.numerics.analysis == io::AnalysisKind::dynamic_analysis;
   s.mechanism_inertia_time_s = c.numerics.mechanism_inertia_time_s;
+  s.low_rank_updates = c.numerics.low_rank_updates;
   return s;
 }
 
