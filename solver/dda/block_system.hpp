@@ -67,6 +67,11 @@ struct MechanicsSettings {
   /// Cycle detection (seed 5.1): a contact changing state more often than this within
   /// a step is set to the most open state it had in the step and held there.
   int max_state_flips = 6;
+  /// How a cycle is resolved for a joint contact whose most open state is open but whose
+  /// faces would then pass through each other by more than kCycleHoldPenetration of the
+  /// joint's length: false, held open all the same (the seed's rule); true, closed and held
+  /// at sliding for the rest of the step (docs/design_notes.md section 25).
+  bool close_penetrating_cycles = false;
   /// A step whose contact iterations end with two faces of a joint overlapping by more
   /// than this fraction of the joint's length is not accepted (it is cut): no rock mass
   /// deforms that much, so the contact state it ended on, e.g. a cycle held open while
@@ -83,7 +88,7 @@ struct MechanicsSettings {
   /// add to K or remove from it are applied to the step's factorisation as a low-rank
   /// correction (Woodbury identity, SpdSolver::modify) instead of a new factorisation,
   /// up to BlockSystem::kMaxLowRank springs (docs/design_notes.md section 26).
-  bool low_rank_updates = true;
+  bool low_rank_updates = false;
 };
 
 /// Linearised normal separation of a joint's faces at one end, the mean of the
@@ -256,6 +261,9 @@ class BlockSystem {
   /// A group's rigid motion is free when the smallest eigenvalue of its springs' rigid
   /// stiffness is below this fraction of the largest.
   static constexpr double kMechanismStiffnessRatio = 1e-6;
+  /// close_penetrating_cycles: the trial penetration, as a fraction of the joint's length,
+  /// beyond which a cycle-held open contact is closed instead (section 25).
+  static constexpr double kCycleHoldPenetration = 1e-3;
   /// Adds the mechanism inertia to K for the blocks of mechanism_blocks().
   void hold_mechanisms();
   // low_rank_updates.cpp

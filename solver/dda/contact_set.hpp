@@ -61,6 +61,8 @@ class ContactSet {
   int count_flip(int contact) { return ++flips_[contact]; }
   /// The most open state the contact has had in this step (open < sliding < locked).
   ContactState most_open(int contact) const { return most_open_[contact]; }
+  /// Holds the contact at `state` for the rest of the step, whatever it had before.
+  void hold(int contact, ContactState state) { most_open_[contact] = state; }
   void note_state(int contact) { most_open_[contact] = std::min(most_open_[contact], contacts_[contact].state); }
   /// The contacts and K's block pairs, for a checkpoint (dda/block_system_state.cpp).
   void save_state(BinaryWriter& out) const;

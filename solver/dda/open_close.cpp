@@ -189,6 +189,16 @@ int BlockSystem::apply_state_changes(const Eigen::VectorXd& d, const std::vector
     if (contacts_.count_flip(ch.contact) > settings_.max_state_flips && !ch.breaks_bond) {
       ++stats.cycle_holds;
       const ContactState most_open = contacts_.most_open(ch.contact);
+      if (settings_.close_penetrating_cycles && c.joint >= 0 && !c.bonded && most_open == ContactState::open &&
+          ch.to != ContactState::open &&
+          -trial_traction(c, d, stats).gap_m > kCycleHoldPenetration * 2.0 * c.length_m) {
+        // Held open, its faces would pass through each other (a step that ends so is cut
+        // by the overlap guard, section 24): closed and held sliding instead.
+        contacts_.hold(ch.contact, ContactState::sliding);
+        ++applied;
+        apply_change(ch, d, stats);
+        continue;
+      }
       if (c.state == most_open) continue;
       ContactChange resolved = ch;
       resolved.to = most_open;

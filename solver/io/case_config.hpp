@@ -262,6 +262,8 @@ struct ContactConfig {
 };
 
 enum class AnalysisKind { static_analysis, dynamic_analysis };
+/// How an open-close cycle is resolved (numerics.cycle_resolution).
+enum class CycleResolution { most_open, close_penetrating };
 /// How the flow Newton's linear systems are solved (coupling::FlowJacobian).
 enum class FlowJacobianKind { dense, krylov };
 
@@ -272,13 +274,16 @@ struct NumericsConfig {
   double mechanism_inertia_time_s = 0.1;
   /// Contact-state changes within a step applied to K's factorisation as a low-rank
   /// correction (docs/design_notes.md section 26).
-  bool low_rank_updates = true;
+  bool low_rank_updates = false;
   double alm_force_tolerance = 1.0e-7;  ///< ALM stop: max |k g| <= tol * max |contact force|
   int max_alm_iterations = 200;
   int max_open_close_iterations = 200;
   /// Cycle detection (seed 5.1): a contact changing state more often than this in a step
   /// is set to its most open state of the step and held there.
   int max_state_flips = 6;
+  /// Cycle resolution: the most open state (seed 5.1), or closed where held open the faces
+  /// would pass through each other (dda::MechanicsSettings::close_penetrating_cycles).
+  CycleResolution cycle_resolution = CycleResolution::most_open;
   double tie_tolerance = 1.0e-3;        ///< seed 2.3 (iii): failures within 0.1 % split
   bool shear_failure_of_intact_joints = false;  ///< false: seed 2.3 (ii), tension first
   // Coupled hydro-mechanical step (seed 2.1, 2.4; docs/formulation.md section 4).

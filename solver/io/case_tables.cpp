@@ -446,7 +446,8 @@ const Table<NumericsConfig>& numerics_table() {
                 "iteration add or remove (at most 16 at a time and 32 since the step's factorisation of K, and "
                 "only when the mechanism holds stay the same) are applied to that factorisation as a low-rank correction "
                 "(Woodbury identity) instead of a new factorisation; a correction whose check solve leaves a "
-                "residual above 1e-7 is dropped for a new factorisation (docs/design_notes.md section 26)"},
+                "residual above 1e-7 is dropped for a new factorisation (docs/design_notes.md section 26; off "
+                "by default: the Marcellus case stopped earlier with it)"},
                &NumericsConfig::low_rank_updates),
        number({"alm_tolerance", "-", "§2.3 (ALM)",
                "ALM stop: max abs(k g) <= tolerance * max abs(contact force)"},
@@ -462,6 +463,14 @@ const Table<NumericsConfig>& numerics_table() {
                 "it had in the step (open, then sliding, then locked) and held there; such steps are counted "
                 "(history cycle_holds, summary steps_with_cycles)"},
                &NumericsConfig::max_state_flips, interval(1, false, kMaxIterations, false)),
+       choice({"cycle_resolution", "", "§5.1: most_open",
+               "how a contact caught in a cycle is held: most_open (the seed's rule: its most open state "
+               "of the step), close_penetrating (the same, except that a joint contact whose faces would "
+               "then pass through each other by more than 1e-3 of the joint's length is closed and held "
+               "sliding; not in the seed)"},
+              &NumericsConfig::cycle_resolution,
+              Choices<CycleResolution>{{"most_open", CycleResolution::most_open},
+                                       {"close_penetrating", CycleResolution::close_penetrating}}),
        number({"tie_tolerance", "-", "§2.3 (iii): 0.1 %",
                "relative difference of normal stress below which simultaneous tensile "
                "failures both break"},

@@ -514,6 +514,35 @@ TEST(DdaOverlap, StepEndingWithFacesPassedThroughEachOtherIsRejected) {
   }
 }
 
+TEST(DdaCycles, CycleHeldOpenThroughClosedFacesClosesWhenAskedTo) {
+  // The set-up above at the full load: held open by the cycle rule, the faces would pass
+  // 1.2 m through each other. With close_penetrating_cycles the contact is closed and held
+  // sliding instead; the step completes with the free block pressed against the fixed one.
+  mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
+  for (auto& j : m.joints) j.properties.initially_open = true;
+  MechanicsSettings settings = alm_settings(25e9);
+  settings.max_state_flips = 0;
+  settings.mechanism_inertia_time_s = 1e6;
+  settings.close_penetrating_cycles = true;
+  BlockSystem system(m, {Material{}}, settings);
+  system.add_fixed_point({0.0, 0.0});
+  system.add_fixed_point({0.0, 1.0});
+  system.add_point_load({1.5, 0.5}, {-1.2 * 2.0 * Material{}.density_kg_m3, 0.0});
+  auto mean_x = [&](int b) {
+    double x = 0.0;
+    for (int k = 0; k < system.n_corners(b); ++k) x += system.corner(b, k).x() / system.n_corners(b);
+    return x;
+  };
+  const int right = mean_x(0) > mean_x(1) ? 0 : 1;
+  const double right_x0 = mean_x(right);
+  StepStatistics stats;
+  ASSERT_NO_THROW(stats = step(system, 1.0));
+  EXPECT_GT(stats.cycle_holds, 0);
+  const ContactState state = system.contacts()[system.joint_contacts(0)[0]].state;
+  EXPECT_EQ(state, ContactState::sliding);
+  EXPECT_LT(std::abs(mean_x(right) - right_x0), 1e-3);
+}
+
 }  // namespace
 }  // namespace hfdda::dda
 
