@@ -56,6 +56,15 @@ void FlowNetwork::fill_initially(int f, double width_m, double pressure_Pa) {
   trial_wetted_ = wetted_;
 }
 
+void FlowNetwork::set_vents(std::vector<char> vent_points) {
+  if (vent_points.size() != node_of_point_.size())
+    throw std::invalid_argument("FlowNetwork::set_vents: one flag per point expected");
+  for (const auto& inj : injections_)
+    if (vent_points[inj.point])
+      throw std::invalid_argument("FlowNetwork::set_vents: an injection point cannot be a vent");
+  vent_point_ = std::move(vent_points);
+}
+
 // ----------------------------------------------------------------------------------
 // Trial network of a step
 
@@ -76,7 +85,7 @@ bool FlowNetwork::wet(int f) {
 
 bool FlowNetwork::trial_pressurised(int point) const {
   const int i = node_of_point_[point];
-  return i >= 0 && i < unknowns_.size() && unknowns_[i] > 0.0;
+  return i >= 0 && i < unknowns_.size() && unknowns_[i] > 0.0 && !vent(point);  // a vent stays at zero pressure
 }
 
 void FlowNetwork::rebuild_trial_topology() {
@@ -160,9 +169,12 @@ void FlowNetwork::rebuild_trial_topology() {
     unknowns_[i] = state >= 0.0 ? state : state * fill_scale[i];
   }
   pressure_ = unknowns_.cwiseMax(0.0);
+  for (int i = 0; i < n; ++i)
+    if (trial_.vent[i]) pressure_[i] = 0.0;
   aperture_trial_.setZero(2 * nf);
   mass_new_.setZero(n);
   leak_mass_.setZero(n);
+  vent_mass_.setZero(n);
 }
 
 void FlowNetwork::set_trial_fracture_data() {
@@ -170,6 +182,9 @@ void FlowNetwork::set_trial_fracture_data() {
   trial_.length_m.resize(nf);
   trial_.hydraulic_width_m.setZero(2 * nf);
   trial_.held_open_floor_m = trial_.floor_m;
+  trial_.vent.assign(trial_nodes_.size(), 0);
+  if (!vent_point_.empty())
+    for (std::size_t i = 0; i < trial_nodes_.size(); ++i) trial_.vent[i] = vent_point_[trial_nodes_[i]];
   for (int k = 0; k < nf; ++k) {
     const int f = trial_fractures_[k];
     trial_.length_m[k] = fractures_[f].length_m;
@@ -209,7 +224,8 @@ FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, ApertureMode
   aperture_trial_ = ev.aperture;
   const double round_off = settings_.tolerance * balance.mass_scale() + balance.residual_round_off();
   for (int i = 0; i < n; ++i) {
-    mass_new_[i] = ev.storage[i] - ev.residual[i];
+    mass_new_[i] = ev.storage[i] - ev.vented[i] - ev.residual[i];
+    vent_mass_[i] = ev.vented[i];
     // Stored mass is never negative: a node emptied to within the solve's tolerance
     // holds none (the ledger then closes to that tolerance); beyond it, the step fails.
     if (mass_new_[i] < 0.0) {
@@ -243,6 +259,7 @@ void FlowNetwork::commit() {
   }
   injected_kg_ += trial_.injected_kg.sum();
   leaked_kg_ += leak_mass_.sum();
+  vented_kg_ += vent_mass_.sum();
   time_s_ += trial_.dt_s;
   trial_wetted_ = wetted_;
 }
@@ -257,7 +274,7 @@ double FlowNetwork::mass_balance_error() const {
   // The fluid present at t = 0 counts as injected before the first step.
   const double supplied = injected_kg_ + initial_mass_;
   if (supplied <= 0.0) return 0.0;
-  return std::abs(supplied - stored_mass() - leaked_kg_) / supplied;
+  return std::abs(supplied - stored_mass() - leaked_kg_ - vented_kg_) / supplied;
 }
 
 double FlowNetwork::volume_stored_mass() const {
@@ -282,7 +299,7 @@ double FlowNetwork::volume_stored_mass() const {
 double FlowNetwork::volume_balance_error() const {
   const double supplied = injected_kg_ + initial_mass_;
   if (supplied <= 0.0) return 0.0;
-  return std::abs(supplied - volume_stored_mass() - leaked_kg_) / supplied;
+  return std::abs(supplied - volume_stored_mass() - leaked_kg_ - vented_kg_) / supplied;
 }
 
 int FlowNetwork::n_nodes() const {

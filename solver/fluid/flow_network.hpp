@@ -98,6 +98,10 @@ class FlowNetwork {
   /// the minimum width) and full of fluid at `pressure_Pa` (>= 0; mass rho(p) L w).
   /// A point shared by fractures filled at different pressures takes the last one.
   void fill_initially(int fracture, double width_m, double pressure_Pa = 0.0);
+  /// Points where the network meets a free edge of the rock, open to a reservoir at
+  /// zero pressure (one flag per point): a node there stays at zero pressure, fills,
+  /// and passes on what it cannot hold (vented_mass). Before the first step.
+  void set_vents(std::vector<char> vent_points);
 
   // --- one step: begin, then any number of (wet, solve), then commit ----------------
   void begin_step(double dt_s);
@@ -135,18 +139,21 @@ class FlowNetwork {
   double injected_mass() const { return injected_kg_; }
   double initial_mass() const { return initial_mass_; }
   double leaked_mass() const { return leaked_kg_; }
+  /// Fluid mass that has left through the vents since t = 0 [kg].
+  double vented_mass() const { return vented_kg_; }
+  bool vent(int point) const { return !vent_point_.empty() && vent_point_[point] != 0; }
   /// Stored mass of the ledger: each node's mass is updated by what flowed in and out
   /// (old + injected - leaked - outflow), so this closes with injected - leaked by
-  /// construction, whether or not the flow solve converged.
+  /// construction, whether or not the flow solve converged (and vented, with vents).
   double stored_mass() const;
-  /// |initial + injected - stored - leaked| / (initial + injected) with the ledger's
+  /// |initial + injected - stored - leaked - vented| / (initial + injected) with the ledger's
   /// stored mass; 0 without any fluid. A check of the bookkeeping only.
   double mass_balance_error() const;
   /// Fluid mass held by the committed state, computed without the ledger: per node the
   /// fill density of its committed state (rho(p) if full, rho(0) times the fill fraction
   /// if partly filled) times its volume sum L/2 w from the committed apertures [kg].
   double volume_stored_mass() const;
-  /// |initial + injected - leaked - volume_stored_mass| / (initial + injected); 0 without
+  /// |initial + injected - leaked - vented - volume_stored_mass| / (initial + injected); 0 without
   /// any fluid. Differs from mass_balance_error by the sum of the last solve's mass
   /// residuals, so it exposes an unconverged flow solve or apertures that do not match
   /// the fluid's (docs/design_notes.md, "Mass ledger and volume check").
@@ -175,6 +182,7 @@ class FlowNetwork {
   FluidProperties fluid_;
   FlowSettings settings_;
   std::vector<Injection> injections_;
+  std::vector<char> vent_point_;  ///< per point, or empty: no vents
 
   // Committed state.
   double time_s_ = 0.0;
@@ -182,14 +190,14 @@ class FlowNetwork {
   std::vector<double> arrival_time_;     ///< per fracture: time it was wetted [s]
   std::vector<double> aperture_;         ///< per fracture end [m]
   std::vector<double> point_pressure_, point_mass_;
-  double injected_kg_ = 0.0, leaked_kg_ = 0.0;
+  double injected_kg_ = 0.0, leaked_kg_ = 0.0, vented_kg_ = 0.0;
   double initial_mass_ = 0.0;            ///< fluid present at t = 0 [kg]
 
   // Trial of the current step.
   std::vector<char> trial_wetted_;
   std::vector<int> trial_fractures_, trial_nodes_, node_of_point_;
   TrialNetwork trial_;  // what its mass balance needs: end nodes, masses, inflows, floors, dt
-  Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_;  // per trial node or end
+  Eigen::VectorXd unknowns_, pressure_, aperture_trial_, mass_new_, leak_mass_, vent_mass_;  // per trial node or end
   std::vector<double> point_state_;                      // per point: pressure [Pa] if full, else fill fraction - 1
   std::vector<char> reached_;                            // the fluid has been at the point
   std::vector<double> guess_state_;                      // per point, warm start across topology changes

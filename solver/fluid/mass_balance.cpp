@@ -31,7 +31,9 @@ void MassBalance::evaluate_pressure(const Eigen::VectorXd& x, Evaluation& out) c
   out.pressure_slope.resize(n);
   for (int i = 0; i < n; ++i) {
     const double y = x[i];
-    if (y >= kPressureRounding) {
+    if (is_vent(i)) {
+      out.pressure[i] = 0.0, out.pressure_slope[i] = 0.0;
+    } else if (y >= kPressureRounding) {
       out.pressure[i] = y, out.pressure_slope[i] = 1.0;
     } else if (y <= -kPressureRounding) {
       out.pressure[i] = 0.0, out.pressure_slope[i] = 0.0;
@@ -77,9 +79,11 @@ void MassBalance::evaluate_storage(const Eigen::VectorXd& x, Evaluation& out) co
     out.volume[network_.node_b[k]] += half * out.aperture[2 * k + 1];
   }
   out.storage.resize(n);
+  out.vented.setZero(n);
   out.residual.resize(n);
   for (int i = 0; i < n; ++i) {
     out.storage[i] = fill_density(x[i], i) * out.volume[i];
+    if (is_vent(i) && x[i] > 0.0) out.vented[i] = fluid_.density(0.0) * out.volume[i] * x[i] / network_.fill_scale_Pa[i];
     out.residual[i] = out.storage[i] - network_.old_mass_kg[i] +
                       network_.homotopy * (wetted_fraction(x[i], i) * out.density[i] * network_.leak_volume_m3[i] -
                                            network_.injected_kg[i]);
@@ -170,11 +174,12 @@ void MassBalance::add_flow_jacobian(const Evaluation& out, std::vector<Eigen::Tr
 }
 
 double MassBalance::fill_density(double y, int i) const {
-  return y >= 0.0 ? fluid_.density(y) : fluid_.density(0.0) * (1.0 + y / network_.fill_scale_Pa[i]);
+  // A vent node's fill fraction 1 + y / P runs on past 1: the excess is vented.
+  return y >= 0.0 && !is_vent(i) ? fluid_.density(y) : fluid_.density(0.0) * (1.0 + y / network_.fill_scale_Pa[i]);
 }
 
 double MassBalance::fill_density_slope(double y, int i) const {
-  return y >= 0.0 ? fluid_.density_derivative() : fluid_.density(0.0) / network_.fill_scale_Pa[i];
+  return y >= 0.0 && !is_vent(i) ? fluid_.density_derivative() : fluid_.density(0.0) / network_.fill_scale_Pa[i];
 }
 
 double MassBalance::wetted_fraction(double y, int i) const {
@@ -185,7 +190,8 @@ double MassBalance::wetted_fraction(double y, int i) const {
 }
 
 double MassBalance::state_of_unknown(double y, int i) const {
-  return y >= 0.0 ? y : y / network_.fill_scale_Pa[i];
+  if (y >= 0.0) return is_vent(i) ? 0.0 : y;  // a vent node that vented is full at zero pressure
+  return y / network_.fill_scale_Pa[i];
 }
 
 double MassBalance::mass_scale() const {

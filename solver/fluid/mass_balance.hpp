@@ -15,6 +15,13 @@
 // corners of max(y, 0) and of the aperture floors max(w, floor) are rounded so that
 // the residual is C1 (docs/design_notes.md section 2).
 //
+// A vent node (where the network meets a free edge of the rock, open to a reservoir at
+// zero pressure) is at zero pressure whatever its fill: its fill state runs on past
+// full (y > 0), and the mass beyond full, rho(0) V y / P, leaves through the vent
+// instead of being stored. The node fills at zero pressure first and vents only what
+// it cannot hold (never takes fluid in from outside), and its mass balance stays
+// smooth across full (docs/design_notes.md section 27).
+//
 // Units SI, per metre of out-of-plane thickness.
 
 #include <Eigen/Dense>
@@ -51,6 +58,7 @@ struct TrialNetwork {
   Eigen::VectorXd injected_kg;     ///< injected over the step
   Eigen::VectorXd leak_volume_m3;  ///< Carter leak-off of its walls over the step, if all wetted
   Eigen::VectorXd fill_scale_Pa;   ///< P of the fill state (only shapes Newton's path)
+  std::vector<char> vent;          ///< vent node: held at zero pressure, its excess leaves
   // Per trial end.
   Eigen::VectorXd floor_m;            ///< lower bound of the aperture
   Eigen::VectorXd hydraulic_width_m;  ///< w0 of its fracture
@@ -73,7 +81,9 @@ class MassBalance {
   static constexpr double kPressureRounding = 1.0e3;
 
   struct Evaluation {
-    Eigen::VectorXd pressure, pressure_slope, density, aperture, volume, storage, residual, eta;
+    /// storage: the mass a node's fill state accounts for (at a vent node including
+    /// what leaves through it); vented: the part of it that leaves through a vent.
+    Eigen::VectorXd pressure, pressure_slope, density, aperture, volume, storage, vented, residual, eta;
     /// Per node (with the Jacobian only): rho' V + dt sum eta, the slope of a full node's
     /// mass balance in its own pressure from storage and flow to its neighbours.
     Eigen::VectorXd conductance;
@@ -91,18 +101,20 @@ class MassBalance {
   /// Jacobian as well if asked for.
   void evaluate(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& base, const ApertureModel& s,
                 Evaluation& out, bool with_jacobian) const;
-  /// Stored mass per volume of a node in fill state y, and its derivative in y.
+  /// Mass per volume of a node in fill state y (stored, and at a vent node vented as
+  /// well), and its derivative in y.
   double fill_density(double y, int node) const;
   double fill_density_slope(double y, int node) const;
   /// Fraction of a node's fracture walls that the fluid wets in fill state y (1 if full).
   double wetted_fraction(double y, int node) const;
-  /// Committed form of a node's fill state y: the pressure [Pa] if full, else the fill
-  /// fraction minus one, in [-1, 0) (independent of the fill scale).
+  /// Committed form of a node's fill state y: the pressure [Pa] if full (0 at a vent),
+  /// else the fill fraction minus one, in [-1, 0) (independent of the fill scale).
   double state_of_unknown(double y, int node) const;
   /// Mass scale of the convergence test: mass present plus mass injected in the step [kg].
   double mass_scale() const;
   /// Round-off of the step's mass balance [kg]: 64 eps times its largest terms.
   double residual_round_off() const;
+  bool is_vent(int node) const { return !network_.vent.empty() && network_.vent[node] != 0; }
 
  private:
   /// Pieces of evaluate, in its order: pressure of the fill state, floored apertures,

@@ -27,16 +27,21 @@ void MassBalanceSolver::rescale_partly_filled_nodes(Evaluation& ev) {
   Eigen::VectorXd& fill_scale = network_.fill_scale_Pa;
   const Eigen::VectorXd& conductance = ev.conductance;
   const double rho0 = fluid_.density(0.0);
+  // A vent node past full (y > 0) is rescaled the same way: its vented mass
+  // rho(0) V y / P then turns into y through the same conductance.
   for (int i = 0; i < n; ++i) {
     double& y = unknowns_[i];
-    if (y > -kPressureRounding || !(ev.volume[i] > 0.0) || !(conductance[i] > 0.0)) continue;
-    const double deficit = -y / fill_scale[i];  // 1 - fill fraction, > 0
+    const bool venting = balance_.is_vent(i) && y > 0.0;
+    if ((y > -kPressureRounding && !venting) || !(ev.volume[i] > 0.0) || !(conductance[i] > 0.0)) continue;
+    const double deficit = -y / fill_scale[i];  // 1 - fill fraction: > 0, < 0 for a venting node
     // Keep y below the rounded corner, so that the pressure stays exactly zero.
-    const double scale = std::clamp(rho0 * ev.volume[i] / conductance[i],
-                                    std::max(kMinFillScale, kPressureRounding / deficit), fluid_.bulk_modulus_Pa);
+    const double lowest = venting ? kMinFillScale : std::max(kMinFillScale, kPressureRounding / deficit);
+    const double scale = std::clamp(rho0 * ev.volume[i] / conductance[i], lowest, fluid_.bulk_modulus_Pa);
     if (scale == fill_scale[i]) continue;
-    // Storage and leak-off through the wetted walls both scale with the fill fraction.
-    const double filled_slope = rho0 * ev.volume[i] + network_.homotopy * ev.density[i] * network_.leak_volume_m3[i];
+    // Storage and leak-off through the wetted walls both scale with the fill fraction
+    // (all walls are wetted at a venting node).
+    const double filled_slope =
+        rho0 * ev.volume[i] + (venting ? 0.0 : network_.homotopy * ev.density[i] * network_.leak_volume_m3[i]);
     ev.local.coeffRef(i, i) += filled_slope * (1.0 / scale - 1.0 / fill_scale[i]);
     fill_scale[i] = scale;
     y = -deficit * scale;

@@ -281,6 +281,11 @@ void check_breakable_region(const CaseConfig& c, const MergedChecker& m) {
     m.fail("joints.breakable_region", "region 'inner' needs domain.inner");
 }
 
+void check_vented_edge(const CaseConfig& c, const MergedChecker& m) {
+  if (c.fluid && c.fluid->edge == "vented" && !c.domain.inner)
+    m.fail("fluid.edge", "vented needs domain.inner (its boundary is the edge that vents)");
+}
+
 void check_stop_condition(const CaseConfig& c, const MergedChecker& m) {
   if (c.time.stop_when != "fluid_at_edge") return;
   if (!c.domain.inner) m.fail("time.stop_when", "fluid_at_edge needs domain.inner (its boundary is the edge)");
@@ -417,6 +422,7 @@ const std::vector<CrossCheck>& cross_checks() {
        check_material_regions},
       {"`joints.breakable_region: inner` needs `domain.inner`.", check_breakable_region},
       {"`time.stop_when: fluid_at_edge` needs `domain.inner`, a `fluid` and no `load_ramp`.", check_stop_condition},
+      {"`fluid.edge: vented` needs `domain.inner`.", check_vented_edge},
       {"With `contact.two_tier`, `contact.intact_stiffness_ratio` times the larger of `normal_stiffness` and "
        "`shear_stiffness` is at most 1e6.",
        check_intact_stiffness},

@@ -175,6 +175,10 @@ struct FluidConfig {
   double reference_pressure_Pa = 0.0;   ///< p0 of eq. 2.6
   /// Carter coefficient C_L of each wall [m/s^0.5]; both walls leak (erratum 4 in docs/seed_errata.md).
   double leak_off_coefficient_m_sqrt_s = 0.0;
+  /// "sealed", or "vented": where a joint holding fluid meets the boundary of
+  /// domain.inner (the edge of a laboratory block), the fluid is at zero pressure and
+  /// what reaches it leaves the model (FlowNetwork::set_vents).
+  std::string edge = "sealed";
 };
 
 /// A fluid source at the mesh point nearest `at` (seed 3.2: Q0 at the origin).

@@ -302,7 +302,12 @@ const Table<FluidConfig>& fluid_table() {
                "depth, t0 the time fluid reached it (the seed's eq. 2.3 counts one wall; "
                "erratum 4 in docs/seed_errata.md); a partly filled node leaks through its "
                "wetted fraction only, so no node loses more than it holds"},
-              &FluidConfig::leak_off_coefficient_m_sqrt_s, zero_to(1))}};
+              &FluidConfig::leak_off_coefficient_m_sqrt_s, zero_to(1)),
+       choice({"edge", "", "§5.2: a laboratory block, whose fluid escapes at its edge",
+               "sealed: no fluid leaves through the boundary of domain.inner; vented: a point of that "
+               "boundary reached by fluid is held at zero pressure, fills, and passes on what it cannot "
+               "hold (counted as mass_vented_kg); needs domain.inner"},
+              &FluidConfig::edge, Choices<std::string>{{"sealed", "sealed"}, {"vented", "vented"}})}};
   return table;
 }
 

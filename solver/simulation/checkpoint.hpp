@@ -18,7 +18,8 @@
 
 namespace hfdda::simulation {
 
-constexpr std::uint32_t kCheckpointVersion = 3;  // 2: load ramp keeps the contact states of its last level; 3: and its crack tips
+// 2: load ramp keeps the contact states of its last level; 3: and its crack tips; 4: vented fluid mass
+constexpr std::uint32_t kCheckpointVersion = 4;
 
 /// Where the run stands after a committed step, besides the model's state.
 struct RunProgress {

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "simulation/stop_conditions.hpp"
 
 namespace hfdda::simulation {
 
@@ -398,6 +399,14 @@ void build_flow_network(Model& model, const io::CaseConfig& c) {
     model.flow->add_injection({point, c.injections[i].mass_rate_kg_s, c.injections[i].start_time_s,
                                c.injections[i].mass_limit_kg.value_or(std::numeric_limits<double>::infinity())});
     model.injection_points.push_back(point);
+  }
+  if (c.fluid->edge == "vented") {
+    std::vector<char> vents = inner_boundary_points(m, c);
+    for (std::size_t i = 0; i < model.injection_points.size(); ++i)
+      if (vents[model.injection_points[i]])
+        throw ModelError("injection '" + c.injections[i].name + "' (line " + std::to_string(c.injections[i].line) +
+                         ") is on the vented edge (fluid.edge: vented): its fluid would leave at once");
+    model.flow->set_vents(std::move(vents));
   }
   for (const auto& probe : c.probes) model.probe_points.push_back(mesh::nearest_point(m, probe.at));
   const auto jacobian = c.numerics.flow_jacobian == io::FlowJacobianKind::krylov ? coupling::FlowJacobian::krylov

@@ -112,6 +112,7 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
     j["fluid"] = {{"mass_initial_kg", flow->initial_mass()},
                   {"mass_injected_kg", flow->injected_mass()},
                   {"mass_leaked_kg", flow->leaked_mass()},
+                  {"mass_vented_kg", flow->vented_mass()},
                   {"mass_stored_kg", flow->stored_mass()},
                   {"mass_volume_kg", flow->volume_stored_mass()},
                   {"mass_balance_error", flow->mass_balance_error()},

@@ -165,8 +165,10 @@ std::vector<OutputColumn> make_fixed_columns() {
        flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.stored_mass(); })},
       {"mass_leaked_kg", "kg", "fluid mass leaked off since t = 0",
        flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.leaked_mass(); })},
+      {"mass_vented_kg", "kg", "fluid mass that has left through a vented edge since t = 0 (fluid.edge)",
+       flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.vented_mass(); })},
       {"mass_balance_error", "-",
-       "|initial + injected - stored - leaked| / (initial + injected), stored as the ledger counts it: closes to "
+       "|initial + injected - stored - leaked - vented| / (initial + injected), stored as the ledger counts it: closes to "
        "round-off by construction, a check of the bookkeeping only",
        flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.mass_balance_error(); })},
       {"mass_volume_kg", "kg",
@@ -174,7 +176,7 @@ std::vector<OutputColumn> make_fixed_columns() {
        "the ledger",
        flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.volume_stored_mass(); })},
       {"mass_volume_error", "-",
-       "|initial + injected - leaked - mass_volume_kg| / (initial + injected): the sum of the last flow solve's "
+       "|initial + injected - leaked - vented - mass_volume_kg| / (initial + injected): the sum of the last flow solve's "
        "mass residuals; large when the solve did not converge or fluid and apertures disagree",
        flow_value([](const StepContext&, const fluid::FlowNetwork& f) { return f.volume_balance_error(); })},
       {"flow_nodes", "-", "nodes of the flow network (points the fluid has reached)",

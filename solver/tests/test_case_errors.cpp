@@ -45,6 +45,11 @@ TEST(CaseFileErrors, StopAtTheEdgeNeedsAnInnerDomainAndFluid) {
   expect_text_error("time: {dt: 1, end_time: 2, stop_when: at_edge}\n", 1, "time.stop_when", "fluid_at_edge");
 }
 
+TEST(CaseFileErrors, VentedEdgeNeedsAnInnerDomain) {
+  expect_text_error("fluid: {viscosity: 0.02,\n  edge: vented}\n", 2, "fluid.edge", "needs domain.inner");
+  expect_text_error("fluid: {edge: open}\n", 1, "fluid.edge", "sealed");
+}
+
 TEST(CaseFileErrors, IntactStiffnessRatioKeepsTheMatrixDigits) {
   expect_text_error("contact: {two_tier: true,\n  intact_stiffness_ratio: 0.5}\n", 2, "contact.intact_stiffness_ratio",
                     "in [1, 10000]");
