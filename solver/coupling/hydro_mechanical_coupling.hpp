@@ -68,6 +68,10 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   /// Statistics of the last step attempt (committed or not).
   const CouplingStatistics& statistics() const { return stats_; }
   const fluid::FlowNetwork& network() const { return network_; }
+  /// S as handed to the flow solve by the last prepare() (dense path; empty on the krylov
+  /// path): tests compare a corrected S with one rebuilt from a new factorisation
+  /// (docs/design_notes.md section 26).
+  const Eigen::MatrixXd& sensitivity() const { return sensitivity_; }
 
  private:
   void refresh_pressurised();
