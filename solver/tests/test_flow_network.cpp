@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "flow_test_support.hpp"
 #include "fluid/flow_network.hpp"
 
 namespace {
@@ -20,27 +21,14 @@ using hfdda::fluid::FlowNetwork;
 using hfdda::fluid::FluidProperties;
 using hfdda::fluid::FlowSettings;
 using hfdda::fluid::Fracture;
-
-FluidProperties water() {
-  FluidProperties f;
-  f.density_kg_m3 = 1000.0;
-  f.bulk_modulus_Pa = 2.2e9;
-  f.viscosity_Pa_s = 1.0e-3;
-  return f;
-}
+using hfdda::fluid::testing::solve_rigid;
+using hfdda::fluid::testing::water;
 
 /// A chain of `n` fractures of length `length` along points 0..n.
 FlowNetwork chain(int n, double length, FluidProperties fluid = water(), FlowSettings settings = {}) {
   std::vector<Fracture> fractures;
   for (int k = 0; k < n; ++k) fractures.push_back({k, k + 1, length});
   return FlowNetwork(n + 1, fractures, fluid, settings);
-}
-
-/// Rigid walls: every wetted end keeps aperture `w` whatever the pressure.
-void solve_rigid(FlowNetwork& net, double w) {
-  const int ends = 2 * static_cast<int>(net.trial_fractures().size());
-  const int nodes = static_cast<int>(net.trial_nodes().size());
-  net.solve(Eigen::VectorXd::Constant(ends, w), Eigen::MatrixXd::Zero(ends, nodes));
 }
 
 TEST(FlowNetwork, CompressibleStorageOfRigidFracture) {

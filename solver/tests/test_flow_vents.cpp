@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "flow_test_support.hpp"
 #include "fluid/flow_network.hpp"
 
 namespace {
@@ -16,26 +17,14 @@ using hfdda::fluid::FlowNetwork;
 using hfdda::fluid::FlowSettings;
 using hfdda::fluid::FluidProperties;
 using hfdda::fluid::Fracture;
-
-FluidProperties water() {
-  FluidProperties f;
-  f.density_kg_m3 = 1000.0;
-  f.bulk_modulus_Pa = 2.2e9;
-  f.viscosity_Pa_s = 1.0e-3;
-  return f;
-}
+using hfdda::fluid::testing::solve_rigid;
+using hfdda::fluid::testing::water;
 
 /// Points 0 - 1 - 2 joined by two fractures of 1 m; a vent at point 2.
 FlowNetwork vented_chain() {
   FlowNetwork net(3, {Fracture{0, 1, 1.0}, Fracture{1, 2, 1.0}}, water(), FlowSettings{});
   net.set_vents({0, 0, 1});
   return net;
-}
-
-void solve_rigid(FlowNetwork& net, double w) {
-  const int ends = 2 * static_cast<int>(net.trial_fractures().size());
-  const int nodes = static_cast<int>(net.trial_nodes().size());
-  net.solve(Eigen::VectorXd::Constant(ends, w), Eigen::MatrixXd::Zero(ends, nodes));
 }
 
 TEST(FlowVents, SteadyChainVentsWhatIsInjectedAtZeroOutletPressure) {
