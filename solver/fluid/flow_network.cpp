@@ -35,6 +35,7 @@ FlowNetwork::FlowNetwork(int n_points, std::vector<Fracture> fractures, FluidPro
 void FlowNetwork::add_injection(const Injection& injection) {
   if (injection.point < 0 || injection.point >= n_points())
     throw std::invalid_argument("FlowNetwork: injection at an invalid point");
+  if (vent(injection.point)) throw std::invalid_argument("FlowNetwork: an injection point cannot be a vent");
   injections_.push_back(injection);
 }
 
@@ -168,9 +169,7 @@ void FlowNetwork::rebuild_trial_topology() {
     const double state = reached_[point] ? guess_state_[point] : -1.0;
     unknowns_[i] = state >= 0.0 ? state : state * fill_scale[i];
   }
-  pressure_ = unknowns_.cwiseMax(0.0);
-  for (int i = 0; i < n; ++i)
-    if (trial_.vent[i]) pressure_[i] = 0.0;
+  pressure_ = unknowns_.cwiseMax(0.0);  // a vent's committed state is never above 0
   aperture_trial_.setZero(2 * nf);
   mass_new_.setZero(n);
   leak_mass_.setZero(n);

@@ -89,6 +89,9 @@ TEST(FlowVents, InjectionAtAVentIsRejected) {
   net.add_injection({1, 1e-3, 0.0});
   EXPECT_THROW(net.set_vents({0, 1}), std::invalid_argument);
   EXPECT_THROW(net.set_vents({0}), std::invalid_argument);
+  FlowNetwork vented(2, {Fracture{0, 1, 1.0}}, water(), FlowSettings{});
+  vented.set_vents({0, 1});
+  EXPECT_THROW(vented.add_injection({1, 1e-3, 0.0}), std::invalid_argument);
 }
 
 }  // namespace
