@@ -72,6 +72,14 @@ struct MechanicsSettings {
   /// joint's length: false, held open all the same (the seed's rule); true, closed and held
   /// at sliding for the rest of the step (docs/design_notes.md section 25).
   bool close_penetrating_cycles = false;
+  /// A joint contact whose bond broke earlier in this step and that slides: true, locked
+  /// again as soon as its slip since the failure reverses (DDA's rule for any sliding
+  /// contact); false, left sliding for the rest of the step (opening still opens it), the
+  /// reversal being judged again from the next step. The slip is measured from the
+  /// failure, so within the failing step a reversal is the rebound of the neighbours'
+  /// redistribution, and the re-locked contact holds a shear force outside friction that
+  /// may break the next bond (docs/design_notes.md section 29).
+  bool relock_in_failure_step = true;
   /// A step whose contact iterations end with two faces of a joint overlapping by more
   /// than this fraction of the joint's length is not accepted (it is cut): no rock mass
   /// deforms that much, so the contact state it ended on, e.g. a cycle held open while

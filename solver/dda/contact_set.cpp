@@ -110,6 +110,7 @@ void ContactSet::begin_step() {
   for (int ci = n_joint_contacts_; ci < size(); ++ci)
     if (contacts_[ci].vertex_vertex_active) remember(ci);
   flips_.assign(contacts_.size(), 0);
+  failed_in_step_.assign(contacts_.size(), 0);
   most_open_.resize(contacts_.size());
   for (int ci = 0; ci < size(); ++ci) most_open_[ci] = contacts_[ci].state;
 }

@@ -3,7 +3,7 @@
 // two per joint (ends p and q) first, then the vertex-vertex candidates; the block
 // pairs of K's pattern; the joint contacts around each point (propagation rule 2.3 i,
 // closed-joint chains); and the per-step bookkeeping (state at the start of the step,
-// flips of each contact for the cycle detection).
+// flips of each contact for the cycle detection, bonds broken in the step).
 
 #include <algorithm>
 #include <utility>
@@ -64,6 +64,9 @@ class ContactSet {
   /// Holds the contact at `state` for the rest of the step, whatever it had before.
   void hold(int contact, ContactState state) { most_open_[contact] = state; }
   void note_state(int contact) { most_open_[contact] = std::min(most_open_[contact], contacts_[contact].state); }
+  /// The contact's bond broke in this step.
+  void note_bond_failure(int contact) { failed_in_step_[contact] = 1; }
+  bool bond_failed_in_step(int contact) const { return failed_in_step_[contact] != 0; }
   /// The contacts and K's block pairs, for a checkpoint (dda/block_system_state.cpp).
   void save_state(BinaryWriter& out) const;
   void restore_state(BinaryReader& in);
@@ -83,6 +86,7 @@ class ContactSet {
   std::vector<int> at_point_offset_, at_point_;  // joint contacts by point
   std::vector<int> flips_;                       // state changes of each contact within the step
   std::vector<ContactState> most_open_;          // most open state of each contact within the step
+  std::vector<char> failed_in_step_;             // the contact's bond broke within the step
   std::vector<std::pair<int, int>> couplings_;
   bool pattern_changed_ = false;
 };

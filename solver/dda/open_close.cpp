@@ -80,11 +80,13 @@ std::optional<ContactChange> BlockSystem::open_close_change(int ci, const Contac
         return ContactChange{ci, ContactState::sliding, false, t.shear_N >= 0.0 ? 1.0 : -1.0};
       break;
     case ContactState::sliding: {
-      // Slip since locking, in the sense of the friction force; reversal re-locks.
+      // Slip since locking (or since the bond broke), in the sense of the friction force; a
+      // reversal re-locks.
       double slip = 0.0;
       for (int k = 0; k < c.n_springs; ++k) slip += 1.0 / c.n_springs * spring_shear(c.springs[k], d);
       if (t.normal_N > 0.0) return ContactChange{ci, ContactState::open};
-      if (c.joint >= 0 && slip * c.friction_sign < 0.0) return ContactChange{ci, ContactState::locked};
+      const bool may_relock = settings_.relock_in_failure_step || !contacts_.bond_failed_in_step(ci);
+      if (c.joint >= 0 && may_relock && slip * c.friction_sign < 0.0) return ContactChange{ci, ContactState::locked};
       break;
     }
   }
@@ -144,6 +146,7 @@ void BlockSystem::apply_change(const ContactChange& ch, const Eigen::VectorXd& d
   Contact& c = contacts_[ch.contact];
   if (ch.breaks_bond) {
     c.bonded = false;
+    contacts_.note_bond_failure(ch.contact);
     ++stats.bonds_broken;
   }
   if (ch.vertex_vertex) {

@@ -288,6 +288,9 @@ struct NumericsConfig {
   /// Cycle resolution: the most open state (seed 5.1), or closed where held open the faces
   /// would pass through each other (dda::MechanicsSettings::close_penetrating_cycles).
   CycleResolution cycle_resolution = CycleResolution::most_open;
+  /// A contact whose bond broke in this step may be re-locked by a slip reversal within
+  /// the step (dda::MechanicsSettings::relock_in_failure_step).
+  bool relock_in_failure_step = true;
   double tie_tolerance = 1.0e-3;        ///< seed 2.3 (iii): failures within 0.1 % split
   bool shear_failure_of_intact_joints = false;  ///< false: seed 2.3 (ii), tension first
   // Coupled hydro-mechanical step (seed 2.1, 2.4; docs/formulation.md section 4).

@@ -100,6 +100,13 @@ const Table<NumericsConfig>& numerics_table() {
               &NumericsConfig::cycle_resolution,
               Choices<CycleResolution>{{"most_open", CycleResolution::most_open},
                                        {"close_penetrating", CycleResolution::close_penetrating}}),
+       boolean({"relock_in_failure_step", "", "none (HFDDA): DDA locks any sliding contact whose slip reverses (Shi 1988)",
+                "a joint contact whose bond broke earlier in the same step and that slides: true, locked again "
+                "when its slip since the failure reverses (the rule for every other sliding contact); false, "
+                "left sliding until the step ends (it may still open). Within the failing step the slip is "
+                "measured from the failure, and a contact re-locked there holds a shear force outside "
+                "friction (docs/design_notes.md section 29)"},
+               &NumericsConfig::relock_in_failure_step),
        number({"tie_tolerance", "-", "§2.3 (iii): 0.1 %",
                "relative difference of normal stress below which simultaneous tensile "
                "failures both break"},

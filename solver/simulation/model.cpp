@@ -541,6 +541,7 @@ dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   s.max_open_close_iterations = c.numerics.max_open_close_iterations;
   s.max_state_flips = c.numerics.max_state_flips;
   s.close_penetrating_cycles = c.numerics.cycle_resolution == io::CycleResolution::close_penetrating;
+  s.relock_in_failure_step = c.numerics.relock_in_failure_step;
   s.dynamic = c.numerics.analysis == io::AnalysisKind::dynamic_analysis;
   s.mechanism_inertia_time_s = c.numerics.mechanism_inertia_time_s;
   s.low_rank_updates = c.numerics.low_rank_updates;

@@ -458,6 +458,52 @@ TEST(DdaCycles, ContactFlippingTooOftenIsHeldInItsMostOpenState) {
   }
 }
 
+TEST(DdaCycles, BondBrokenInTheStepIsReLockedBySlipReversalOnlyWhenAsked) {
+  // A bond breaks in shear (locked -> sliding, friction in +t); the right block then moves
+  // back along the joint, reversing the slip since the failure. DDA's rule re-locks a
+  // sliding contact whose slip reverses; with relock_in_failure_step = false a contact
+  // whose bond broke in this step stays sliding, and from the next step on the same
+  // reversal re-locks it again.
+  const mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
+  for (const bool relock : {true, false}) {
+    MechanicsSettings settings = alm_settings(25e9);
+    settings.relock_in_failure_step = relock;
+    BlockSystem system(m, {Material{}}, settings);
+    system.add_fixed_point({0.0, 0.0});
+    system.add_fixed_point({0.0, 1.0});
+    system.begin_step(1.0);
+    StepStatistics stats;
+    system.assemble_and_factorise(stats);
+    const int ci = system.joint_contacts(0)[0];
+    ASSERT_TRUE(system.contacts()[ci].bonded);
+    const int right = system.contacts()[ci].block_a == 0 ? 1 : 0;  // either block will do: it moves alone
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(6 * system.n_blocks());
+    system.apply_state_changes(d, {ContactChange{ci, ContactState::sliding, true, 1.0}}, stats);
+    ASSERT_FALSE(system.contacts()[ci].bonded);
+    // Of the two senses of motion along the joint (y), one reverses the slip.
+    auto relocked_after = [&](double dy) {
+      d.setZero();
+      d[6 * right + 1] = dy;
+      for (const ContactChange& ch : system.trial_contacts(d, stats).changes)
+        if (ch.contact == ci && ch.to == ContactState::locked) return true;
+      return false;
+    };
+    const bool up = relocked_after(1e-6), down = relocked_after(-1e-6);
+    if (relock) {
+      EXPECT_NE(up, down) << "exactly one sense reverses the slip";
+    } else {
+      EXPECT_FALSE(up || down) << "re-locked in the step its bond broke";
+      // The next step: the contact (still sliding, its slip measured from the start of
+      // the step) re-locks on a reversal as any sliding contact does.
+      d.setZero();
+      system.commit(d, 1.0, stats);
+      system.begin_step(1.0);
+      system.assemble_and_factorise(stats);
+      EXPECT_NE(relocked_after(1e-6), relocked_after(-1e-6));
+    }
+  }
+}
+
 TEST(DdaOverlap, FacesPushedIntoEachOtherAreMeasuredAlongTheJoint) {
   // Two unit squares sharing the joint x = 1: moving the right block 0.3 m into the left
   // one overlaps both ends of the joint by 0.3 m, 0.3 of its length; moving it away
