@@ -37,6 +37,7 @@ struct StepStatistics {
   int active_vertex_vertex = 0;     ///< active at the end of the (last) step
   int max_active_vertex_vertex = 0; ///< largest active count at the end of a step
   double max_penetration_m = 0.0;
+  double max_block_strain = 0.0;    ///< largest principal strain increment of a block, accepted steps
 
   // --- fluid coupling (seed 2.1, 2.4) ---------------------------------------------
   int step_cuts = 0;                ///< halvings of the step after a failed attempt
@@ -81,6 +82,7 @@ struct StepStatistics {
     active_vertex_vertex = later.active_vertex_vertex;
     max_active_vertex_vertex = std::max(max_active_vertex_vertex, later.max_active_vertex_vertex);
     max_penetration_m = std::max(max_penetration_m, later.max_penetration_m);
+    max_block_strain = std::max(max_block_strain, later.max_block_strain);
     step_cuts += later.step_cuts;
     fractures_wetted += later.fractures_wetted;
     flow_solves += later.flow_solves;

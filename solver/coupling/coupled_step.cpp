@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -70,6 +71,7 @@ StepStatistics CoupledStep::attempt(double dt_s) {
     stats.seconds_assembly += seconds_since(start);
     const Eigen::VectorXd d = open_close_iterations(stats);
     reject_overlapping_faces(d);
+    reject_crushed_blocks(d, stats);
     mechanics_.commit(d, dt_s, stats);
     for (FluidLoadModel* f : fluids_) f->commit(mechanics_);
   } catch (...) {
@@ -93,6 +95,22 @@ void CoupledStep::reject_overlapping_faces(const Eigen::VectorXd& d) const {
   msg << "the faces of joint " << worst.joint << " overlap by " << worst.overlap_m << " m at point " << point
       << " (" << at.x() << ", " << at.y() << ") m, " << worst.fraction_of_length
       << " of the joint's length (limit " << limit
+      << "): the contact state the iterations ended on is not a solution";
+  throw ConvergenceError(msg.str());
+}
+
+void CoupledStep::reject_crushed_blocks(const Eigen::VectorXd& d, StepStatistics& stats) const {
+  const double limit = mechanics_.settings().max_step_strain;
+  const dda::BlockSystem::BlockStrain worst = mechanics_.largest_step_strain(d);
+  // Non-finite strains are left to the run's check of non-finite fields, which says so.
+  if (worst.block < 0 || !(worst.strain > limit) || !std::isfinite(worst.strain)) {
+    if (std::isfinite(worst.strain)) stats.max_block_strain = std::max(stats.max_block_strain, worst.strain);
+    return;
+  }
+  const Vec2 at = mechanics_.centroid(worst.block);
+  std::ostringstream msg;
+  msg << "block " << worst.block << " at (" << at.x() << ", " << at.y() << ") m would be strained by "
+      << worst.strain << " in this step (limit " << limit
       << "): the contact state the iterations ended on is not a solution";
   throw ConvergenceError(msg.str());
 }

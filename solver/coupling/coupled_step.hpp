@@ -42,6 +42,9 @@ class CoupledStep {
   /// Throws ConvergenceError (the step is cut) where the iterations ended with two
   /// faces of a joint overlapping by more than max_overlap_fraction of its length.
   void reject_overlapping_faces(const Eigen::VectorXd& d) const;
+  /// Throws ConvergenceError if d strains a block beyond MechanicsSettings::max_step_strain.
+  /// Records the largest strain in stats.max_block_strain.
+  void reject_crushed_blocks(const Eigen::VectorXd& d, StepStatistics& stats) const;
   /// Open-close iterations until no state changes; the converged displacement.
   Eigen::VectorXd open_close_iterations(StepStatistics& stats);
   /// The contact iterations (ALM or penalty) of one open-close iteration.

@@ -150,6 +150,9 @@ struct SpdSolver::Cholmod {
     cholmod_start(&common);
     common.final_asis = 1;
     common.supernodal = CHOLMOD_SUPERNODAL;
+    // Errors only: a matrix that is not positive definite is a warning to CHOLMOD, and
+    // factorize() reports it with the unknown and block where it failed.
+    common.print = 1;
     relax_supernodes(common);
   }
   ~Cholmod() {
@@ -189,9 +192,12 @@ void SpdSolver::factorize(const Eigen::SparseMatrix<double>& lower) {
   cholmod_factorize(&a, c.factor, &c.common);
   factorization_seconds_ += seconds_since(start);
   ++factorizations_;
-  if (c.factor->minor != c.factor->n)
-    throw ConvergenceError("the block stiffness matrix K is not positive definite (CHOLMOD factorisation failed); "
-                           "a block is probably unconstrained");
+  failed_unknown_ = -1;
+  if (c.factor->minor != c.factor->n) {
+    // minor: the first column of the permuted matrix without a positive pivot.
+    failed_unknown_ = static_cast<const int*>(c.factor->Perm)[c.factor->minor];
+    throw ConvergenceError("the block stiffness matrix K is not positive definite (CHOLMOD factorisation failed)");
+  }
 }
 
 bool SpdSolver::modify(const std::vector<SpringTerm>& changes, LowRankMethod method) {

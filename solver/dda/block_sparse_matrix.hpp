@@ -77,8 +77,12 @@ class SpdSolver {
   SpdSolver& operator=(const SpdSolver&) = delete;
 
   /// Numeric factorisation; the first call also runs the symbolic analysis.
-  /// Throws ConvergenceError if K is not positive definite.
+  /// Throws ConvergenceError if K is not positive definite (failed_unknown() then says
+  /// where).
   void factorize(const Eigen::SparseMatrix<double>& lower);
+  /// The unknown (row of K) whose pivot was not positive in the last failed
+  /// factorize(); -1 after a successful one.
+  int failed_unknown() const { return failed_unknown_; }
   /// The solves from now on are of K + sum k e e^T over `changes` (k < 0: a spring
   /// removed). Returns false if the modified matrix is found not positive definite
   /// (updown) or its capacitance matrix singular (woodbury); factorize() again then.
@@ -110,6 +114,7 @@ class SpdSolver {
   struct Cholmod;  // CHOLMOD's workspace and factors (block_sparse_matrix.cpp)
   std::unique_ptr<Cholmod> cholmod_;
   bool analysed_ = false;
+  int failed_unknown_ = -1;
   int factorizations_ = 0;
   double factorization_seconds_ = 0.0;
   double modification_seconds_ = 0.0;

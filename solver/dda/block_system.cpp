@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
+#include <sstream>
+
+#include "core/errors.hpp"
 
 namespace hfdda::dda {
 
@@ -47,11 +51,29 @@ void BlockSystem::assemble_and_factorise(StepStatistics& stats) {
   stats.seconds_low_rank += seconds_since(start);
   if (modified) return;
   start = Clock::now();
-  solver_.factorize(stiffness_.matrix());
+  try {
+    solver_.factorize(stiffness_.matrix());
+  } catch (const ConvergenceError& e) {
+    throw ConvergenceError(std::string(e.what()) + describe_unknown(solver_.failed_unknown()));
+  }
   stats.seconds_factorization += seconds_since(start);
   ++stats.factorizations;
   factor_of_this_step_ = true;
   factorised_held_blocks_ = held_blocks_;
+}
+
+std::string BlockSystem::describe_unknown(int unknown) const {
+  if (unknown < 0 || unknown >= 6 * n_blocks()) return "";
+  static const char* const names[6] = {"x translation", "y translation", "rotation",
+                                       "strain xx", "strain yy", "strain xy"};
+  const int b = unknown / 6;
+  const PolygonMoments& m = moments_[b];
+  std::ostringstream where;
+  where << " at the " << names[unknown % 6] << " of block " << b << " (centroid (" << m.centroid.x() << ", "
+        << m.centroid.y() << ") m, signed area " << m.area << " m^2"
+        << (m.area <= 0.0 ? ": the block is inverted" : "") << ", diagonal of K there "
+        << stiffness_.matrix().coeff(unknown, unknown) << ")";
+  return where.str();
 }
 
 void BlockSystem::commit(const Eigen::VectorXd& d, double dt_s, StepStatistics& stats) {
@@ -106,6 +128,18 @@ BlockSystem::FaceOverlap BlockSystem::largest_face_overlap(const Eigen::VectorXd
                                g.row_b.dot(d.segment<6>(6 * g.block_b)));
       if (overlap > worst.fraction_of_length * length) worst = {overlap, overlap / length, j, end};
     }
+  }
+  return worst;
+}
+
+BlockSystem::BlockStrain BlockSystem::largest_step_strain(const Eigen::VectorXd& d) const {
+  BlockStrain worst;
+  for (int b = 0; b < n_blocks(); ++b) {
+    // Principal strains of (exx, eyy, gxy): centre +- radius of Mohr's circle.
+    const double exx = d[6 * b + 3], eyy = d[6 * b + 4], gxy = d[6 * b + 5];
+    const double radius = std::hypot(0.5 * (exx - eyy), 0.5 * gxy);
+    const double largest = std::abs(0.5 * (exx + eyy)) + radius;
+    if (worst.block < 0 || largest > worst.strain) worst = {largest, b};
   }
   return worst;
 }

@@ -86,6 +86,13 @@ struct MechanicsSettings {
   /// its faces pass through each other, is not a solution (docs/design_notes.md
   /// section 24; Shi's DDA cuts the time step on its penetration limit likewise).
   double max_overlap_fraction = 0.1;
+  /// A step whose displacement strains a block by more than this (principal strain
+  /// increment) is not accepted either: an elastic rock block strained 10 % in one step
+  /// carries stresses of E / 10, far beyond any rock strength, and such strains come from
+  /// faces that were driven through each other, not from loads; a block strained by -1
+  /// is inverted and makes K indefinite at the next factorisation (design notes
+  /// section 30).
+  double max_step_strain = 0.1;
   bool dynamic = false;                     ///< false: velocities reset every step (static)
   /// Static analysis: blocks that the contact state of an open-close iteration does not
   /// hold (a group whose closed contacts leave it a rigid motion) take the inertia term
@@ -201,6 +208,13 @@ class BlockSystem {
     int joint = -1, end = 0;
   };
   FaceOverlap largest_face_overlap(const Eigen::VectorXd& d) const;
+  /// The block with the largest principal strain increment (in magnitude) in the trial
+  /// displacement d; strain 0 and block -1 for a model without blocks.
+  struct BlockStrain {
+    double strain = 0.0;
+    int block = -1;
+  };
+  BlockStrain largest_step_strain(const Eigen::VectorXd& d) const;
 
   // --- state queries --------------------------------------------------------------
   const mesh::Mesh& mesh() const { return mesh_; }
@@ -217,6 +231,8 @@ class BlockSystem {
   /// Current corner position of a block.
   Vec2 corner(int block, int local) const { return blocks_.corner(block, local); }
   int n_corners(int block) const { return blocks_.n_corners(block); }
+  /// Centroid of a block at the start of the step [m].
+  Vec2 centroid(int block) const { return moments_[block].centroid; }
   Vec2 initial_corner(int block, int local) const {
     return blocks_.initial_corners[blocks_.corner_offset[block] + local];
   }
@@ -314,6 +330,8 @@ class BlockSystem {
   // open_close.cpp
   ContactTraction trial_traction(const Contact& c, const Eigen::VectorXd& d, StepStatistics& stats) const;
   std::optional<ContactChange> open_close_change(int contact, const ContactTraction& t, const Eigen::VectorXd& d) const;
+  /// " at the <unknown> of block b (centroid, signed area, K's diagonal)", for errors.
+  std::string describe_unknown(int unknown) const;
   void add_vertex_vertex_changes(const Eigen::VectorXd& d, std::vector<ContactChange>& changes, StepStatistics& stats);
   void apply_change(const ContactChange& change, const Eigen::VectorXd& d, StepStatistics& stats);
   void describe_first_change(const Contact& c, ContactState to);

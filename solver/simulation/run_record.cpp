@@ -112,6 +112,8 @@ std::vector<OutputColumn> make_fixed_columns() {
        [](const StepContext& c) { return c.stats.max_penetration_m; }},
       {"max_overlap_m", "m", "largest overlap of joint faces in the committed state",
        [](const StepContext& c) { return c.max_overlap_m; }},
+      {"max_block_strain", "-", "largest principal strain increment of a block in the step (a step above 0.1 is refused)",
+       [](const StepContext& c) { return c.stats.max_block_strain; }},
       {"step_wall_s", "s", "wall time of the step", [](const StepContext& c) { return c.stats.seconds_total; }},
       {"elapsed_wall_s", "s", "wall time of the run so far", [](const StepContext& c) { return c.elapsed_s; }},
       {"step_cuts", "-", "halvings of the step after a failed attempt (0 without a flow network)",

@@ -274,11 +274,18 @@ TEST(DdaSparse, CholmodSolveMatchesDenseSolve) {
   EXPECT_EQ(solver.factorizations(), 2);
 }
 
-TEST(DdaSparse, IndefiniteMatrixIsReported) {
-  BlockSparseMatrix k(1, {});
-  k.add_diagonal(0, -Mat6::Identity());
+TEST(DdaSparse, IndefiniteMatrixIsReportedWithItsUnknown) {
+  // Three blocks, positive definite but for the rotation (unknown 2) of block 1: the
+  // failure names that unknown, whatever order CHOLMOD factorises in.
+  BlockSparseMatrix k(3, {});
+  for (int b = 0; b < 3; ++b) {
+    Mat6 d = Mat6::Identity();
+    if (b == 1) d(2, 2) = -1.0;
+    k.add_diagonal(b, d);
+  }
   SpdSolver solver;
-  EXPECT_THROW(solver.factorize(k.matrix()), std::runtime_error);
+  EXPECT_THROW(solver.factorize(k.matrix()), ConvergenceError);
+  EXPECT_EQ(solver.failed_unknown(), 6 * 1 + 2);
 }
 
 /// K of a chain of blocks joined by stiff springs (k = 30 E, E = 25 GPa), with the spring
@@ -553,6 +560,42 @@ TEST(DdaOverlap, StepEndingWithFacesPassedThroughEachOtherIsRejected) {
         ADD_FAILURE() << "a step with faces 1.2 m through each other was accepted";
       } catch (const ConvergenceError& e) {
         EXPECT_NE(std::string(e.what()).find("faces of joint"), std::string::npos) << e.what();
+      }
+    } else {
+      EXPECT_NO_THROW(step(system, 1.0));
+    }
+  }
+}
+
+TEST(DdaOverlap, LargestStepStrainIsThePrincipalStrainOfTheWorstBlock) {
+  // exx = 0.05, eyy = -0.2 on block 1: principal strains 0.05 and -0.2; the shear of
+  // block 0 (gxy = 0.1, principal +-0.05) is smaller.
+  const mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
+  BlockSystem system(m, {Material{}}, alm_settings(25e9));
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(6 * system.n_blocks());
+  d[6 * 0 + 5] = 0.1;
+  d[6 * 1 + 3] = 0.05, d[6 * 1 + 4] = -0.2;
+  const BlockSystem::BlockStrain worst = system.largest_step_strain(d);
+  EXPECT_EQ(worst.block, 1);
+  EXPECT_NEAR(worst.strain, 0.2, 1e-15);
+}
+
+TEST(DdaOverlap, StepThatCrushesABlockIsRejected) {
+  // One unit square held at two corners and pulled at the third: a load of E / 4 (in N
+  // per metre of thickness) strains it by about 0.25, beyond the 0.1 a step may; the
+  // step is refused naming the block. A hundredth of the load passes.
+  const mesh::Mesh m = small_mesh(1, 1, 1.0, mesh::CellSplit::none);
+  for (const double load : {0.25 * 25e9, 0.0025 * 25e9}) {
+    BlockSystem system(m, {Material{25e9, 0.25, 2650.0}}, alm_settings(25e9));
+    system.add_fixed_point({0.0, 0.0});
+    system.add_fixed_point({0.0, 1.0});
+    system.add_point_load({1.0, 0.5}, {load, 0.0});
+    if (load > 0.01 * 25e9) {
+      try {
+        step(system, 1.0);
+        ADD_FAILURE() << "a step straining a block by about 0.25 was accepted";
+      } catch (const ConvergenceError& e) {
+        EXPECT_NE(std::string(e.what()).find("would be strained"), std::string::npos) << e.what();
       }
     } else {
       EXPECT_NO_THROW(step(system, 1.0));
