@@ -32,7 +32,7 @@ constexpr const char* kEnsembleUsage =
     "streams that depend only on the master seed and i. Under mpirun, rank 0 hands the\n"
     "realisations out one at a time; the maps are the same for any number of ranks.\n"
     "Re-running the same command resumes: finished realisations are skipped. SIGINT/SIGTERM\n"
-    "drops the realisations in flight and exits 3. --force empties DIR first.\n"
+    "drops the realisations in flight and exits 3. --force empties DIR first (but for CASE.yaml, if it is in DIR).\n"
     "--shard K/N: only the realisations with index % N == K (K from 0), for job arrays;\n"
     "then `hfdda ensemble merge --out DIR SHARD_DIR...` writes the maps over all of them.\n"
     "--threads N: threads per process (default: HFDDA_THREADS, else 1; keep 1 under mpirun).\n"
@@ -90,13 +90,17 @@ int merge_command(int argc, char** argv) {
   return figures ? (draw_figures(out_dir) == 0 ? 0 : 2) : 0;
 }
 
-/// Empties DIR for --force when it is an ensemble directory or holds nothing else.
-std::string empty_directory(const std::string& dir) {
+/// Empties DIR for --force, except the case file itself when it lies in DIR: the case
+/// an ensemble ran must stay beside its records (ensemble.json names it), so that
+/// `--realisation I` can repeat any of them.
+std::string empty_directory(const std::string& dir, const std::string& case_file) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(dir, ec)) return "";
   if (!fs::is_directory(dir, ec)) return "'" + dir + "' exists and is not a directory";
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    std::error_code same_ec;
+    if (fs::equivalent(entry.path(), case_file, same_ec)) continue;
     fs::remove_all(entry.path(), ec);
     if (ec) return "cannot empty '" + dir + "': " + ec.message();
   }
@@ -173,7 +177,7 @@ int run_ensemble(int argc, char** argv, const ProcessGroup& group) {
       return usage("--realisation " + std::to_string(only) + ": the ensemble has realisations 0 to " +
                    std::to_string(config.ensemble->realisations - 1));
     if (force) {
-      const std::string problem = empty_directory(out_dir);
+      const std::string problem = empty_directory(out_dir, case_file);
       if (!problem.empty()) return usage(problem);
     }
     return run_one_realisation(config, only, out_dir, quiet);
@@ -185,7 +189,7 @@ int run_ensemble(int argc, char** argv, const ProcessGroup& group) {
   std::vector<long> pending;
   std::string problem;
   if (lead) {
-    if (force) problem = empty_directory(out_dir);
+    if (force) problem = empty_directory(out_dir, case_file);
     if (problem.empty()) try {
         ensemble::prepare_directory(out_dir, manifest, geometry);
         pending = ensemble::pending_realisations(out_dir, manifest);

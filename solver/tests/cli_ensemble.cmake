@@ -89,3 +89,16 @@ execute_process(COMMAND "${HFDDA}" ensemble "${CASE}" --out "${OUT}/shard0" --no
 if(NOT code EQUAL 2 OR NOT err MATCHES "holds another ensemble")
   message(FATAL_ERROR "a directory of another shard was not refused: exit ${code}: ${err}")
 endif()
+
+# --force empties the directory but keeps the case file when it lies there (the harness
+# writes a variant's case.yaml into the directory it runs the ensemble in; ensemble.json
+# names it, and `--realisation I` needs it to repeat a realisation).
+file(MAKE_DIRECTORY "${OUT}/own")
+configure_file("${CASE}" "${OUT}/own/case.yaml" COPYONLY)
+file(WRITE "${OUT}/own/stale.txt" "left by an earlier run")
+execute_process(COMMAND "${HFDDA}" ensemble "${OUT}/own/case.yaml" --out "${OUT}/own" --no-figures --force
+                RESULT_VARIABLE code ERROR_VARIABLE err)
+if(NOT code EQUAL 0 OR NOT EXISTS "${OUT}/own/case.yaml" OR EXISTS "${OUT}/own/stale.txt")
+  message(FATAL_ERROR "--force with the case file in DIR: exit ${code}; case kept, stale file removed? ${err}")
+endif()
+expect_same_maps("${OUT}/serial" "${OUT}/own")
