@@ -45,6 +45,7 @@ CoupledStep::CoupledStep(dda::BlockSystem& mechanics, std::vector<FluidLoadModel
 
 StepStatistics CoupledStep::advance(double dt_s, int max_step_cuts) {
   StepStatistics stats;
+  committed_s_ = 0.0;
   advance_into(dt_s, max_step_cuts, stats);
   return stats;
 }
@@ -52,6 +53,7 @@ StepStatistics CoupledStep::advance(double dt_s, int max_step_cuts) {
 void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats) {
   try {
     stats.accumulate(attempt(dt_s));
+    committed_s_ += dt_s;
   } catch (const ConvergenceError& e) {
     if (cuts_left <= 0) throw;
     ++stats.step_cuts;

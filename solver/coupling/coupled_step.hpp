@@ -32,6 +32,10 @@ class CoupledStep {
   /// Throws the last ConvergenceError if even the smallest sub-step fails (the
   /// committed state is then the last converged sub-step).
   StepStatistics advance(double dt_s, int max_step_cuts);
+  /// The time the last advance() committed [s]: its dt when it returned; when it threw,
+  /// the sum of the sub-steps that converged before the one that failed (0 if none did),
+  /// so that a run stopped there can say which time its state is at.
+  double committed_time_s() const { return committed_s_; }
   /// The intact bonds of the mechanics (also read by the load ramp).
   const BondList& bonds() const { return bonds_; }
 
@@ -66,6 +70,7 @@ class CoupledStep {
   std::vector<FluidLoadModel*> fluids_;
   fracture::FractureRules rules_;
   bool trace_cuts_;
+  double committed_s_ = 0.0;  // time committed by the current or last advance() [s]
   BondList bonds_;
   std::vector<char> pressurised_;                      // union of the fluids' masks
   std::vector<CrackTipState> tips_;                    // energy criterion: this round's tips

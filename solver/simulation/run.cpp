@@ -199,6 +199,17 @@ RunResult run(Model& model, const RunOptions& options) {
       else
         std::snprintf(where, sizeof where, "step %d (t = %g s to %g s): ", step, t - time.dt_s, t);
       result.message = where + std::string(e.what());
+      // Sub-steps of this step that converged before the failing one stay committed
+      // (CoupledStep::advance): the state, and the outputs written from it, are then at
+      // a time inside the step, which the run reports.
+      const double partial_s = model.step->committed_time_s();
+      if (partial_s > 0.0 && !ramp) {
+        char reached[160];
+        std::snprintf(reached, sizeof reached, " (the state is at t = %.9g s: the sub-steps of this step that "
+                      "converged before it are committed)", t - time.dt_s + partial_s);
+        result.message += reached;
+        result.time_s = t - time.dt_s + partial_s;
+      }
       break;
     }
     if (ramp) ramp->after_step(*model.system, step, st.bonds_broken);

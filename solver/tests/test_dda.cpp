@@ -567,6 +567,27 @@ TEST(DdaOverlap, StepEndingWithFacesPassedThroughEachOtherIsRejected) {
   }
 }
 
+TEST(DdaOverlap, FailedStepReportsTheTimeItsConvergedHalvesCommitted) {
+  // The free block of the test above, pushed into the fixed one: 1.2 m of overlap in a
+  // step of 1 s, 0.3 m in 0.5 s (both refused), 0.075 m in 0.25 s (accepted); the next
+  // quarter would reach 0.15 m, refused with no cuts left. The quarter that converged
+  // stays committed, and the step says so: 0.25 s of it.
+  mesh::Mesh m = small_mesh(2, 1, 1.0, mesh::CellSplit::none);
+  for (auto& j : m.joints) j.properties.initially_open = true;
+  MechanicsSettings settings = alm_settings(25e9);
+  settings.max_state_flips = 0;
+  settings.mechanism_inertia_time_s = 1e6;
+  BlockSystem system(m, {Material{}}, settings);
+  system.add_fixed_point({0.0, 0.0});
+  system.add_fixed_point({0.0, 1.0});
+  system.add_point_load({1.5, 0.5}, {-1.2 * 2.0 * Material{}.density_kg_m3, 0.0});
+  coupling::CoupledStep stepper(system, {});
+  EXPECT_THROW(stepper.advance(1.0, 2), ConvergenceError);
+  EXPECT_DOUBLE_EQ(stepper.committed_time_s(), 0.25);
+  EXPECT_NO_THROW(stepper.advance(0.25 * 0.5, 0));  // a step that converges commits all of it
+  EXPECT_DOUBLE_EQ(stepper.committed_time_s(), 0.125);
+}
+
 TEST(DdaOverlap, LargestStepStrainIsThePrincipalStrainOfTheWorstBlock) {
   // exx = 0.05, eyy = -0.2 on block 1: principal strains 0.05 and -0.2; the shear of
   // block 0 (gxy = 0.1, principal +-0.05) is smaller.
