@@ -40,20 +40,25 @@ void FlowNetwork::add_injection(const Injection& injection) {
 }
 
 void FlowNetwork::fill_initially(int f, double width_m, double pressure_Pa) {
-  if (!(pressure_Pa >= 0.0)) throw std::invalid_argument("FlowNetwork::fill_initially: negative pressure");
   const double w = std::max(width_m, settings_.min_width_main_m);
+  fill_initially(f, {w, w}, pressure_Pa);
+}
+
+void FlowNetwork::fill_initially(int f, const std::array<double, 2>& end_width_m, double pressure_Pa) {
+  if (!(pressure_Pa >= 0.0)) throw std::invalid_argument("FlowNetwork::fill_initially: negative pressure");
   wetted_[f] = 1;
   arrival_time_[f] = time_s_;
-  aperture_[2 * f] = aperture_[2 * f + 1] = w;
-  const double mass_per_end = fluid_.density(pressure_Pa) * 0.5 * fractures_[f].length_m * w;
-  point_mass_[fractures_[f].point_p] += mass_per_end;
-  point_mass_[fractures_[f].point_q] += mass_per_end;
-  for (int point : {fractures_[f].point_p, fractures_[f].point_q}) {
-    reached_[point] = 1;
-    point_state_[point] = pressure_Pa;  // full at that pressure
-    point_pressure_[point] = pressure_Pa;
+  const int points[2] = {fractures_[f].point_p, fractures_[f].point_q};
+  for (int end = 0; end < 2; ++end) {
+    const double w = std::max(end_width_m[end], settings_.min_width_tip_m);
+    aperture_[2 * f + end] = w;
+    const double mass = fluid_.density(pressure_Pa) * 0.5 * fractures_[f].length_m * w;
+    point_mass_[points[end]] += mass;
+    initial_mass_ += mass;
+    reached_[points[end]] = 1;
+    point_state_[points[end]] = pressure_Pa;  // full at that pressure
+    point_pressure_[points[end]] = pressure_Pa;
   }
-  initial_mass_ += 2.0 * mass_per_end;
   trial_wetted_ = wetted_;
 }
 

@@ -49,6 +49,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -98,6 +99,11 @@ class FlowNetwork {
   /// the minimum width) and full of fluid at `pressure_Pa` (>= 0; mass rho(p) L w).
   /// A point shared by fractures filled at different pressures takes the last one.
   void fill_initially(int fracture, double width_m, double pressure_Pa = 0.0);
+  /// The same with an opening per end (point p, point q), each at least the minimum
+  /// width of a tip (the caller gives a node that joins two fractures at least the
+  /// larger minimum, as the floors of the trial network do): the rock's opening under
+  /// the initial pressure (coupling/initial_opening.hpp).
+  void fill_initially(int fracture, const std::array<double, 2>& end_width_m, double pressure_Pa);
   /// Points where the network meets a free edge of the rock, open to a reservoir at
   /// zero pressure (one flag per point): a node there stays at zero pressure, fills,
   /// and passes on what it cannot hold (vented_mass). Before the first step.

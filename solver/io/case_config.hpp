@@ -71,6 +71,9 @@ struct JointConfig {
   std::string breakable_region = "all";
 };
 
+/// Initial aperture of a fluid-filled fracture (fractures[].initial_opening).
+enum class InitialOpening { width, elastic };
+
 /// A line feature: initial fracture, natural fracture, prescribed path or interface.
 /// Joints lying on it take its overrides.
 struct FractureConfig {
@@ -94,6 +97,9 @@ struct FractureConfig {
   /// flow network from t = 0 (seed 3.2: the joints at the injection point).
   bool fluid_filled = false;
   double initial_width_m = 0.0;       ///< initial aperture of fluid-filled joints (0: the minimum width)
+  /// Where the initial aperture of fluid-filled joints comes from: initial_width, or the
+  /// rock's opening under initial_pressure (coupling/initial_opening.hpp).
+  InitialOpening initial_opening = InitialOpening::width;
   double initial_pressure_Pa = 0.0;   ///< initial fluid pressure of fluid-filled joints
   int line = 0;                       ///< case-file line, for error messages
 };

@@ -199,6 +199,18 @@ void check_fracture_item(const FileReader& r, const YAML::Node& item, const std:
     r.fail(item["initial_pressure"], key + ".initial_pressure",
            "is only used with fluid_filled: true (got " +
                format_number(fracture.initial_pressure_Pa) + ")");
+  if (fracture.initial_opening == InitialOpening::elastic) {
+    if (!fracture.fluid_filled)
+      r.fail(item["initial_opening"], key + ".initial_opening",
+             "elastic is only used with fluid_filled: true (it sets the width of the fluid it starts with)");
+    if (fracture.initial_width_m > 0)
+      r.fail(item["initial_width"], key + ".initial_width",
+             "cannot be given with initial_opening: elastic (the opening under initial_pressure is the width; "
+             "got " + format_number(fracture.initial_width_m) + ")");
+    if (!(fracture.initial_pressure_Pa > 0))
+      r.fail(item["initial_opening"], key + ".initial_opening",
+             "elastic needs initial_pressure > 0 on the same fracture (the pressure that opens it)");
+  }
 }
 
 const Table<FractureConfig>& fracture_table() {
@@ -210,7 +222,8 @@ const Table<FractureConfig>& fracture_table() {
       "of `joints`. "
       "`from` and `to` differ. `fluid_filled: true` needs `initially_open: true` and "
       "excludes `pressure`; `initial_width` > 0 and `initial_pressure` > 0 need "
-      "`fluid_filled: true`. `pressure` and `segment_length` have further rules in the checks across keys.",
+      "`fluid_filled: true`; `initial_opening: elastic` needs `fluid_filled: true` and `initial_pressure` > 0, "
+      "and excludes `initial_width`. `pressure` and `segment_length` have further rules in the checks across keys.",
       {text({"name", "", "", "label used in outputs"}, &FractureConfig::name),
        required(point({"from", "m", "§3.1: 20 m fracture at the centre", "first end"},
                       &FractureConfig::from, "inside domain.outer")),
@@ -265,6 +278,13 @@ const Table<FractureConfig>& fracture_table() {
                "(numerics.min_width_main)"},
               &FractureConfig::initial_width_m, at_least(0),
               std::string(kWithinDomain) + ", > 0 only with fluid_filled"),
+       choice({"initial_opening", "", "none (HFDDA): the seed's fluid-filled starts are at zero pressure",
+               "where the initial aperture of its fluid-filled joints comes from: width (initial_width, the "
+               "rock not yet opened, so that in the first steps the fluid is squeezed out under the closing "
+               "limit) or elastic (the opening of the rock under initial_pressure and the loads of the first "
+               "step, one solve before it: the fluid starts in equilibrium; docs/design_notes.md section 31)"},
+              &FractureConfig::initial_opening,
+              Choices<InitialOpening>{{"width", InitialOpening::width}, {"elastic", InitialOpening::elastic}}),
        number({"initial_pressure", "Pa",
                "§3.3: notch fluid at 0.08 % compression by mass, i.e. 0.0008 K_f",
                "initial fluid pressure of its fluid-filled joints: they hold rho(p) times "

@@ -193,6 +193,32 @@ TEST(CaseFileFluid, InitialPressureNeedsFluidFilled) {
   EXPECT_EQ(load_case_text(fluid_case(""), "default.yaml").fractures[0].initial_pressure_Pa, 0.0);
 }
 
+TEST(CaseFileFluid, ElasticInitialOpeningNeedsAFluidAtPressureAndNoWidth) {
+  expect_text_error(
+      "fractures:\n  - from: [0, 0]\n    to: [1, 0]\n    initially_open: true\n"
+      "    initial_opening: elastic\n",
+      5, "fractures[0].initial_opening", "elastic is only used with fluid_filled: true");
+  expect_text_error(
+      "fractures:\n  - from: [0, 0]\n    to: [1, 0]\n    initially_open: true\n    fluid_filled: true\n"
+      "    initial_opening: elastic\n",
+      6, "fractures[0].initial_opening", "elastic needs initial_pressure > 0");
+  expect_text_error(
+      "fractures:\n  - from: [0, 0]\n    to: [1, 0]\n    initially_open: true\n    fluid_filled: true\n"
+      "    initial_opening: elastic\n    initial_pressure: 1e6\n    initial_width: 1e-4\n",
+      8, "fractures[0].initial_width", "cannot be given with initial_opening: elastic");
+  expect_text_error(
+      "fractures:\n  - from: [0, 0]\n    to: [1, 0]\n    initially_open: true\n    fluid_filled: true\n"
+      "    initial_opening: wide\n",
+      6, "fractures[0].initial_opening", "must be one of: width, elastic");
+  const CaseConfig c = load_case_text(
+      "fractures: [{from: [-1, 0], to: [1, 0], initially_open: true, fluid_filled: true,\n"
+      "             initial_opening: elastic, initial_pressure: 1.0e6}]\n"
+      "fluid: {}\ninjections: [{at: [0, 0], mass_rate: 1}]\n",
+      "ok.yaml");
+  EXPECT_EQ(c.fractures[0].initial_opening, InitialOpening::elastic);
+  EXPECT_EQ(load_case_text(fluid_case(""), "default.yaml").fractures[0].initial_opening, InitialOpening::width);
+}
+
 TEST(CaseFileFluid, FlowNetworkPartsNeedAFluidSection) {
   expect_text_error("title: x\ninjections:\n  - {at: [0, 0], mass_rate: 1}\n", 2, "injections",
                     "needs a 'fluid' section");
