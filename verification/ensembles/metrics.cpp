@@ -293,6 +293,7 @@ CaseDefinition case_definition() {
   d.metrics = variant_metrics;
   d.study_metrics = study_metrics;
   d.run = run_ensemble;
+  d.variants_share_cores = false;  // its variants run MPI ranks and time their speed-up
   return d;
 }
 

@@ -107,6 +107,9 @@ struct CaseDefinition {
   /// empty), it sets VariantRun::completed and notes what failed. VariantRun::model stays
   /// null; the metrics read what the run wrote.
   std::function<void(VariantRun&, const std::string& case_path, const std::string& run_dir)> run{};
+  /// Whether its variants may run side by side (HFDDA_VERIFY_JOBS > 1). False where a
+  /// variant uses the cores itself (MPI ranks) or measures its own speed-up.
+  bool variants_share_cores = true;
 };
 
 /// Defined by the case folder's metrics.cpp.

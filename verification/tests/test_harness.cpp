@@ -5,10 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "harness.hpp"
@@ -159,6 +163,72 @@ checks:
   - {name: "x", metric: value, comparison: "~", threshold: 1.0}
 )";
   EXPECT_EQ(run(study, "quick", constant_metrics(0.0)), 2);
+}
+
+/// Sets HFDDA_VERIFY_JOBS for one scope.
+struct VerifyJobs {
+  explicit VerifyJobs(const char* value) { setenv("HFDDA_VERIFY_JOBS", value, 1); }
+  ~VerifyJobs() { unsetenv("HFDDA_VERIFY_JOBS"); }
+};
+
+/// Metrics that record how many variants were in their metrics at once (each stays 50 ms).
+CaseDefinition overlap_metrics(std::atomic<int>& inside, std::atomic<int>& most) {
+  return {nullptr,
+          [&inside, &most](const VariantRun& r) {
+            const int now = ++inside;
+            for (int seen = most; now > seen && !most.compare_exchange_weak(seen, now);) {
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            --inside;
+            Metrics m;
+            if (r.built) m.numbers["value"] = r.variant->number("value");
+            return m;
+          },
+          nullptr};
+}
+
+TEST_F(HarnessTest, VariantsRunTwoAtATimeWithTheResultsOfOneAtATime) {
+  const std::string study = kHeader + R"(variants:
+  - {name: a, case: tiny.yaml, label: "a", value: 1}
+  - {name: b, case: tiny.yaml, label: "b", value: 2}
+  - {name: c, case: stops.yaml, label: "c", value: 3}
+  - {name: d, case: tiny.yaml, label: "d", value: 4}
+checks:
+  - {name: "{label}: value", metric: value, comparison: "<=", threshold: 3.0, gating: false}
+)";
+  auto without_times = [](nlohmann::json r) {
+    r.erase("wall_s");
+    for (auto& [name, m] : r["metrics"].items()) m.erase("wall_s");
+    return r;
+  };
+  std::atomic<int> inside{0}, most{0};
+  nlohmann::json one_at_a_time;
+  {
+    const VerifyJobs jobs("1");
+    ASSERT_EQ(run(study, "quick", overlap_metrics(inside, most)), 1);  // c does not complete
+    EXPECT_EQ(most, 1);
+    one_at_a_time = without_times(result_);
+  }
+  {
+    const VerifyJobs jobs("2");
+    most = 0;
+    ASSERT_EQ(run(study, "quick", overlap_metrics(inside, most)), 1);
+    EXPECT_EQ(most, 2) << "two variants at a time";
+    EXPECT_EQ(without_times(result_), one_at_a_time) << "same checks, in study order, and metrics";
+    // A study whose variants use the cores themselves runs them one at a time.
+    CaseDefinition exclusive = overlap_metrics(inside, most);
+    exclusive.variants_share_cores = false;
+    most = 0;
+    run(study, "quick", exclusive);
+    EXPECT_EQ(most, 1);
+  }
+  {
+    const VerifyJobs jobs("two");
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(run(study, "quick", constant_metrics(0.0)), 2);
+    EXPECT_NE(testing::internal::GetCapturedStderr().find("HFDDA_VERIFY_JOBS must be a whole number from 1 to 64 (got 'two')"),
+              std::string::npos);
+  }
 }
 
 }  // namespace
