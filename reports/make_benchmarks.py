@@ -450,8 +450,9 @@ def scaling_section(results: Path, figure_path: Path | None) -> tuple[list[str],
         "",
         "The case: a fishbone network of fractures already open and full of fluid (a trunk through the centre, "
         "ribs 8 m apart crossing it, a 4 m branch crossing each rib every 2 m; 24 ribs^2 + 1 wetted nodes) on a "
-        "structured mesh of 1 m triangles whose domain grows with the network; fluid at 0.1 MPa in joints "
-        "100 um wide, 0.5 kg/s injected at the centre, steps of 1 s, unbreakable joints (the network does not "
+        "structured mesh of 1 m triangles whose domain grows with the network; fluid at 0.1 MPa in the volume "
+        "that pressure opens (`initial_opening: elastic`: the rock in equilibrium with it at t = 0, design "
+        "notes section 31), 0.5 kg/s injected at the centre, steps of 1 s, unbreakable joints (the network does not "
         "change), penalty contacts. Why this network and these settings: the comment at the top of "
         "`bench_network_scaling.cpp`. Per size, in a process of its own: one untimed warm-up step, then "
         f"{ctx.get('timed_steps', '?')} timed steps, then one factorisation of K (`assemble_and_factorise`, "
