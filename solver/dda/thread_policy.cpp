@@ -39,6 +39,11 @@ std::string apply_thread_policy(int threads) {
   if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) {
     set(threads);
     blas = "OpenBLAS " + std::to_string(threads);
+    // The kernels OpenBLAS chose for this processor: long runs depend on them in the last
+    // bits (docs/design_notes.md section 32), so logs and records name them.
+    using CoreName = char* (*)();
+    if (auto core = reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename")); core && core())
+      blas += " with " + std::string(core()) + " kernels";
   }
   return "threads: " + std::to_string(threads) + " (CHOLMOD OpenMP " + std::to_string(threads) + ", " + blas +
          (threads == 1 ? std::string(", ") + serial_region_note() : std::string()) + ")";

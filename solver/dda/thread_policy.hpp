@@ -23,7 +23,8 @@ int threads_from_environment();
 /// region of CHOLMOD runs in parallel (max active levels 0). With more, OpenBLAS runs
 /// `threads` threads but CHOLMOD's OpenMP loops, which carry a num_threads(4) clause,
 /// run 4 (measured: 5 threads in the process at 2; only OMP_THREAD_LIMIT, read at
-/// program start, would cap them). Returns what was set, as one line for logs. Call it
+/// program start, would cap them). Returns what was set, as one line for logs, with the
+/// kernels OpenBLAS chose for the processor (OPENBLAS_CORETYPE overrides them). Call it
 /// from the main thread; a later call replaces the setting.
 std::string apply_thread_policy(int threads);
 

@@ -64,6 +64,14 @@ TEST_F(ThreadPolicy, TwoThreadsStillFormATeam) {
   EXPECT_EQ(r.iterations, 1000);
 }
 
+TEST_F(ThreadPolicy, NoteNamesTheBlasKernelsOfTheProcessor) {
+  // Long runs differ in the last bits between OpenBLAS's kernels (design notes section 32).
+  const std::string note = apply_thread_policy(1);
+  if (note.find("no OpenBLAS") != std::string::npos) GTEST_SKIP() << "not linked with OpenBLAS: " << note;
+  EXPECT_NE(note.find("OpenBLAS 1 with "), std::string::npos) << note;
+  EXPECT_NE(note.find(" kernels"), std::string::npos) << note;
+}
+
 TEST_F(ThreadPolicy, RefusesZeroThreads) { EXPECT_THROW(apply_thread_policy(0), std::invalid_argument); }
 
 }  // namespace
