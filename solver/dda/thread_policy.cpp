@@ -4,22 +4,15 @@
 #include <omp.h>
 
 #include <atomic>
-#include <cstdlib>
 #include <stdexcept>
+
+#include "core/environment.hpp"
 
 namespace hfdda::dda {
 
 const char* serial_region_note();  // openmp_serial_regions.cpp
 
-int threads_from_environment() {
-  const char* text = std::getenv("HFDDA_THREADS");
-  if (text == nullptr || *text == '\0') return 1;
-  char* end = nullptr;
-  const long value = std::strtol(text, &end, 10);
-  if (*end != '\0' || value < 1 || value > 1024)
-    throw std::invalid_argument(std::string("HFDDA_THREADS must be a whole number from 1 to 1024 (got '") + text + "')");
-  return static_cast<int>(value);
-}
+int threads_from_environment() { return core::whole_number_from_environment("HFDDA_THREADS", 1, 1024); }
 
 namespace {
 std::atomic<int> g_applied_threads{0};  // for applied_threads()

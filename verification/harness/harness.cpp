@@ -6,19 +6,15 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <exception>
 #include <filesystem>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
-#include <thread>
 
 #include "io/output.hpp"
+#include "variant_pool.hpp"
 
 #ifndef HFDDA_REFERENCE_DATA_DIR
 #error "HFDDA_REFERENCE_DATA_DIR must point at the repository's reference_data/ (set by verification/CMakeLists.txt)"
@@ -521,58 +517,6 @@ VariantOutcome run_variant(const VariantSpec& spec, const CaseDefinition& def, c
   return out;
 }
 
-/// HFDDA_VERIFY_JOBS if set (a whole number from 1 to 64), else 1: how many variants of
-/// a study run at once, each on a thread of its own under the one-thread policy (a
-/// variant's run is a process-like unit: its own model, files and factorisations; nothing
-/// is shared between runs but read-only study data). Throws std::runtime_error naming
-/// the variable for any other value.
-int variant_jobs_from_environment() {
-  const char* text = std::getenv("HFDDA_VERIFY_JOBS");
-  if (text == nullptr || *text == '\0') return 1;
-  char* end = nullptr;
-  const long jobs = std::strtol(text, &end, 10);
-  if (*end != '\0' || jobs < 1 || jobs > 64)
-    throw std::runtime_error(std::string("HFDDA_VERIFY_JOBS must be a whole number from 1 to 64 (got '") + text + "')");
-  return static_cast<int>(jobs);
-}
-
-/// Runs the variants, `jobs` at a time, and returns their outcomes in the order given.
-/// Each finished run is logged at once (in the order they finish).
-std::vector<VariantOutcome> run_variants(const std::vector<const VariantSpec*>& specs, const CaseDefinition& def,
-                                         const std::string& study_name, const std::string& tier,
-                                         const std::string& case_dir, const std::string& out_dir, int jobs) {
-  std::vector<std::optional<VariantOutcome>> outcomes(specs.size());
-  std::atomic<std::size_t> next{0};
-  std::mutex log;
-  std::exception_ptr failure;
-  auto work = [&] {
-    for (std::size_t i = next++; i < specs.size(); i = next++) try {
-      VariantOutcome v = run_variant(*specs[i], def, tier, case_dir, out_dir);
-      {
-        const std::lock_guard<std::mutex> lock(log);
-        std::fprintf(stderr, "%s %-22s %s  t %g s  %.1f s  %s%s%s\n", study_name.c_str(), specs[i]->name.c_str(),
-                     v.run.completed ? "completed    " : "NOT COMPLETED", v.run.run.time_s, v.run.run.wall_seconds,
-                     v.metrics.summary.c_str(), v.run.message.empty() ? "" : "\n    ", v.run.message.c_str());
-      }
-      outcomes[i] = std::move(v);
-    } catch (...) {
-      // A metrics function that throws: the study stops with its error (as with one job).
-      const std::lock_guard<std::mutex> lock(log);
-      if (!failure) failure = std::current_exception();
-      next = specs.size();
-    }
-  };
-  std::vector<std::thread> helpers;
-  for (int j = 1; j < std::min<int>(jobs, static_cast<int>(specs.size())); ++j) helpers.emplace_back(work);
-  work();
-  for (std::thread& t : helpers) t.join();
-  if (failure) std::rethrow_exception(failure);
-  std::vector<VariantOutcome> ordered;
-  ordered.reserve(specs.size());
-  for (auto& v : outcomes) ordered.push_back(std::move(*v));
-  return ordered;
-}
-
 struct Options {
   std::string tier, case_dir, out_dir;
 };
@@ -621,7 +565,15 @@ int run_harness(int argc, char** argv, const CaseDefinition& def) {
                                " runs each variant on one thread; HFDDA_THREADS must then be 1 (got " +
                                std::to_string(dda::applied_threads()) + ")");
     if (jobs > 1) std::fprintf(stderr, "%d variants at a time (HFDDA_VERIFY_JOBS)\n", jobs);
-    outcome.variants = run_variants(selected, def, study.case_name, tier, options->case_dir, out_dir, jobs);
+    outcome.variants = run_variants_in_pool(
+        selected.size(), jobs,
+        [&](std::size_t i) { return run_variant(*selected[i], def, tier, options->case_dir, out_dir); },
+        [&](std::size_t i, const VariantOutcome& v) {
+          std::fprintf(stderr, "%s %-22s %s  t %g s  %.1f s  %s%s%s\n", study.case_name.c_str(),
+                       selected[i]->name.c_str(), v.run.completed ? "completed    " : "NOT COMPLETED",
+                       v.run.run.time_s, v.run.run.wall_seconds, v.metrics.summary.c_str(),
+                       v.run.message.empty() ? "" : "\n    ", v.run.message.c_str());
+        });
     if (def.study_metrics) def.study_metrics(outcome);
     write_files(out_dir, outcome.metrics.files);
 
