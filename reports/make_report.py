@@ -225,6 +225,22 @@ def load_case(result_path: Path) -> dict:
     return data
 
 
+def kernels_line(cases: list[dict]) -> str:
+    """The BLAS kernels the results ran on (result.json "environment"): long runs differ
+    in the last bits between OpenBLAS's kernels (docs/design_notes.md section 32), so a
+    report made from results of several kernels says which ran where."""
+    by_kernel: dict[str, list[str]] = {}
+    for case in cases:
+        env = case.get("environment")
+        kernels = env.get("blas_kernels") if isinstance(env, dict) else None
+        by_kernel.setdefault(str(kernels) if kernels else "not recorded", []).append(str(case["dir"]))
+    source = "OpenBLAS, `OPENBLAS_CORETYPE` (`scripts/blas_kernels.sh`; docs/design_notes.md section 32)"
+    if len(by_kernel) == 1:
+        return f"- BLAS kernels: {next(iter(by_kernel))} for every result; {source}"
+    parts = [f"{k} ({', '.join(f'`{d}`' for d in dirs)})" for k, dirs in sorted(by_kernel.items())]
+    return f"- BLAS kernels: **mixed**: {'; '.join(parts)}; {source}"
+
+
 def summarise(case: dict) -> dict:
     """Per case: gating and reported-only checks counted apart, and the case's state.
 
@@ -539,11 +555,12 @@ def write_report(results: Path, out: Path, source_dir: Path, python: str, junit_
             print(f"make_report: {readme_error}", file=sys.stderr)
         return 1
 
+    cases = [load_case(path) for path in result_files]
+    header.insert(5, kernels_line(cases))  # after "produced by"
     fig_dir.mkdir(parents=True, exist_ok=True)
     produced: set[str] = set()
     sections, summary_rows, summarised = [], [], []
-    for path in result_files:
-        case = load_case(path)
+    for path, case in zip(result_files, cases):
         case_dir = path.parent
         plot_result = None if "error" in case else run_plot(source_dir, str(case["case"]), case_dir, python)
         figures = []

@@ -172,6 +172,23 @@ class MakeReportTest(unittest.TestCase):
         self.assertFalse((self.out / "figures" / "old_case_fig.png").exists())
         self.assertTrue((self.out / "figures" / "network_scaling.png").exists())
 
+    def test_blas_kernels_stated_and_mixed_ones_flagged(self):
+        self.add_two_cases()
+        md = self.report()
+        self.assertIn("- BLAS kernels: not recorded for every result;", md)
+        for name, kernels in (("alpha", "Haswell"), ("beta", "Haswell")):
+            data = json.loads((self.results / name / "result.json").read_text())
+            data["environment"] = {"threads": 1, "blas_kernels": kernels}
+            (self.results / name / "result.json").write_text(json.dumps(data))
+        md = self.report()
+        self.assertIn("- BLAS kernels: Haswell for every result;", md)
+        self.assertLess(md.index("- produced by"), md.index("- BLAS kernels"))
+        data = json.loads((self.results / "beta" / "result.json").read_text())
+        data["environment"]["blas_kernels"] = "Cooperlake"
+        (self.results / "beta" / "result.json").write_text(json.dumps(data))
+        md = self.report()
+        self.assertIn("- BLAS kernels: **mixed**: Cooperlake (`beta`); Haswell (`alpha`);", md)
+
     def test_gating_counted_apart_from_reported_only(self):
         write_case(self.results, "alpha", griffith_like("full"))
         write_case(self.results, "beta", kgd_like("full", gating_miss=True))

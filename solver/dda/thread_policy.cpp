@@ -34,14 +34,19 @@ std::string apply_thread_policy(int threads) {
     blas = "OpenBLAS " + std::to_string(threads);
     // The kernels OpenBLAS chose for this processor: long runs depend on them in the last
     // bits (docs/design_notes.md section 32), so logs and records name them.
-    using CoreName = char* (*)();
-    if (auto core = reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename")); core && core())
-      blas += " with " + std::string(core()) + " kernels";
+    if (const std::string kernels = blas_kernels(); !kernels.empty()) blas += " with " + kernels + " kernels";
   }
   return "threads: " + std::to_string(threads) + " (CHOLMOD OpenMP " + std::to_string(threads) + ", " + blas +
          (threads == 1 ? std::string(", ") + serial_region_note() : std::string()) + ")";
 }
 
 int applied_threads() { return g_applied_threads; }
+
+std::string blas_kernels() {
+  using CoreName = char* (*)();
+  const auto core = reinterpret_cast<CoreName>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
+  const char* name = core ? core() : nullptr;
+  return name ? std::string(name) : std::string();
+}
 
 }  // namespace hfdda::dda

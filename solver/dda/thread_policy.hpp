@@ -31,4 +31,10 @@ std::string apply_thread_policy(int threads);
 /// The value of the last apply_thread_policy() call, 0 before any.
 int applied_threads();
 
+/// The name of the kernels OpenBLAS runs ("Haswell", "Cooperlake", ...; set by the
+/// processor or by OPENBLAS_CORETYPE), or "" when the BLAS is not OpenBLAS or does not
+/// say. Results of long runs depend on them in the last bits (docs/design_notes.md
+/// section 32), so verification results record them.
+std::string blas_kernels();
+
 }  // namespace hfdda::dda

@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "dda/thread_policy.hpp"
@@ -70,6 +73,18 @@ TEST_F(ThreadPolicy, NoteNamesTheBlasKernelsOfTheProcessor) {
   if (note.find("no OpenBLAS") != std::string::npos) GTEST_SKIP() << "not linked with OpenBLAS: " << note;
   EXPECT_NE(note.find("OpenBLAS 1 with "), std::string::npos) << note;
   EXPECT_NE(note.find(" kernels"), std::string::npos) << note;
+}
+
+TEST_F(ThreadPolicy, KernelsAreThoseOpenblasCoretypeNames) {
+  // The scripts pin the kernels with OPENBLAS_CORETYPE (scripts/blas_kernels.sh): the
+  // name OpenBLAS reports must be the one asked for, else the pin did not take.
+  const char* asked = std::getenv("OPENBLAS_CORETYPE");
+  if (blas_kernels().empty()) GTEST_SKIP() << "the BLAS does not name its kernels";
+  if (asked == nullptr || *asked == '\0') GTEST_SKIP() << "OPENBLAS_CORETYPE not set; kernels " << blas_kernels();
+  std::string a(asked), b = blas_kernels();
+  for (std::string* t : {&a, &b}) std::transform(t->begin(), t->end(), t->begin(), [](unsigned char c) { return std::tolower(c); });
+  EXPECT_EQ(a, b) << "asked for " << asked << ", OpenBLAS runs " << blas_kernels();
+  EXPECT_NE(apply_thread_policy(1).find("with " + blas_kernels() + " kernels"), std::string::npos);
 }
 
 TEST_F(ThreadPolicy, RefusesZeroThreads) { EXPECT_THROW(apply_thread_policy(0), std::invalid_argument); }

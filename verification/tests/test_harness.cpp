@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "dda/thread_policy.hpp"
 #include "harness.hpp"
 
 namespace hfdda::verification {
@@ -107,6 +108,22 @@ checks:
   EXPECT_FALSE(result_["metrics"].contains("f"));
   EXPECT_EQ(run(study, "full", constant_metrics(0.5)), 0);
   EXPECT_TRUE(result_["metrics"].contains("f"));
+}
+
+TEST_F(HarnessTest, ResultRecordsTheThreadsAndTheBlasKernels) {
+  // A report made from results of several machines must be able to say which kernels
+  // each result ran on (docs/design_notes.md section 32).
+  const std::string study = kHeader + R"(variants:
+  - {name: a, case: tiny.yaml, label: "a"}
+checks:
+  - {name: "value", metric: value, comparison: "<=", threshold: 1.0, gating: true}
+)";
+  EXPECT_EQ(run(study, "quick", constant_metrics(0.5)), 0);
+  ASSERT_TRUE(result_.contains("environment")) << result_.dump();
+  EXPECT_EQ(result_["environment"]["threads"], dda::applied_threads());
+  EXPECT_GE(result_["environment"]["threads"].get<int>(), 1);
+  const std::string kernels = dda::blas_kernels();
+  EXPECT_EQ(result_["environment"]["blas_kernels"], kernels.empty() ? "unknown" : kernels);
 }
 
 TEST_F(HarnessTest, OnlyGatingChecksDecideTheExitCodeAndTheFlagIsWritten) {
