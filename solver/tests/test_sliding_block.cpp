@@ -100,7 +100,7 @@ struct SlideRun {
 
 /// Base block fixed at its two lower corners, slider resting on it along a joint
 /// inclined at kSlopeDeg (unbonded: initially open, T0 = C0 = 0, friction angle phi).
-SlideRun slide(double phi_deg, bool dynamic, const std::vector<Phase>& phases) {
+SlideRun slide(double phi_deg, bool dynamic, const std::vector<Phase>& phases, bool penalty = false) {
   const double theta = radians(kSlopeDeg);
   const Vec2 down(std::cos(theta), -std::sin(theta)), up_normal(std::sin(theta), std::cos(theta));
   auto at = [&](double along, double across) -> Vec2 { return along * down + across * up_normal; };
@@ -120,6 +120,7 @@ SlideRun slide(double phi_deg, bool dynamic, const std::vector<Phase>& phases) {
   settings.alm_force_tolerance = 1e-10;
   settings.max_alm_iterations = 500;
   settings.dynamic = dynamic;
+  settings.augmented_lagrangian = !penalty;
   BlockSystem system(m, {Material{kYoungsModulus_Pa, 0.25, kDensity_kg_m3}}, settings);
   system.add_fixed_point(m.points[0]);
   system.add_fixed_point(m.points[1]);
@@ -226,6 +227,36 @@ INSTANTIATE_TEST_SUITE_P(Slope30Deg, SlidingBlock,
                            return std::string(info.param.dynamic ? "Dynamic" : "Static") + "Phi" +
                                   std::to_string(tenths / 10) + "_" + std::to_string(tenths % 10) + "Deg";
                          });
+
+// The friction of a sliding contact is N tan(phi) with N its normal force at the end of
+// the step (eq. 2.16), not at its start. Static analysis, the block sliding throughout:
+// gravity at 30 degrees to the joint's normal for n1 steps, then at 25 degrees (both above
+// phi = 20 degrees), so N grows by m g (cos 25 - cos 30) = 10.5 N at the change. Each step
+// moves the block a(tilt) dt^2 / 2 from rest. With the friction of the step's start the
+// first step at 25 degrees runs with the old N: g tan(phi) (cos 25 - cos 30) = 0.144 m/s^2
+// more acceleration, 7.2e-6 m more slip, against a tolerance of 1.0e-6 m. Penalty springs
+// carry the normal force in their gap alone; the Augmented Lagrangian in its multiplier.
+// Disabled: a known failure of today's contact law for penalty contacts, whose friction
+// is taken at the normal force of the step's start, kept to reproduce it. Iterating the
+// friction on the contact iterates passes it, but made a network realisation of the
+// unit tier stop on the flow Newton (docs/design_notes.md section 10).
+TEST(SlidingBlock, DISABLED_FrictionActsWithTheNormalForceOfItsStep) {
+  constexpr double phi = 20.0;
+  constexpr int n1 = 5, n2 = 5;
+  const double a1 = analytical_acceleration(30.0, phi), a2 = analytical_acceleration(25.0, phi);
+  ASSERT_GT(a2, 0.0);
+  for (bool penalty : {true, false}) {
+    const SlideRun run = slide(phi, false, {{n1, 30.0}, {n2, 25.0}}, penalty);
+    for (int k = 1; k <= n1 + n2; ++k) {
+      const double expected = 0.5 * kDt_s * kDt_s * (std::min(k, n1) * a1 + std::max(0, k - n1) * a2);
+      EXPECT_NEAR(run.slip_m[k - 1], expected, slip_tolerance(k, false))
+          << "step " << k << (penalty ? ", penalty" : ", Augmented Lagrangian");
+    }
+    EXPECT_EQ(run.sliding_ends, 2) << (penalty ? "penalty" : "Augmented Lagrangian");
+    EXPECT_NEAR(run.normal_N, slider_mass_kg() * kGravity_m_s2 * std::cos(radians(25.0)), force_tolerance(false))
+        << (penalty ? "penalty" : "Augmented Lagrangian");
+  }
+}
 
 // Disabled: a known failure of the contact law, kept to reproduce it
 // (docs/design_notes.md section 11). A sliding contact re-locks only once its slip since
