@@ -46,7 +46,7 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
-from source_state import Provenance, git_state, split_readme, update_readme
+from source_state import Provenance, git_state, kernels_line, split_readme, update_readme
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_PYTHON = "/usr/bin/python3" if Path("/usr/bin/python3").exists() else sys.executable
@@ -223,22 +223,6 @@ def load_case(result_path: Path) -> dict:
         if not isinstance(data.get(key), type(default)):
             data[key] = default
     return data
-
-
-def kernels_line(cases: list[dict]) -> str:
-    """The BLAS kernels the results ran on (result.json "environment"): long runs differ
-    in the last bits between OpenBLAS's kernels (docs/design_notes.md section 32), so a
-    report made from results of several kernels says which ran where."""
-    by_kernel: dict[str, list[str]] = {}
-    for case in cases:
-        env = case.get("environment")
-        kernels = env.get("blas_kernels") if isinstance(env, dict) else None
-        by_kernel.setdefault(str(kernels) if kernels else "not recorded", []).append(str(case["dir"]))
-    source = "OpenBLAS, `OPENBLAS_CORETYPE` (`scripts/blas_kernels.sh`; docs/design_notes.md section 32)"
-    if len(by_kernel) == 1:
-        return f"- BLAS kernels: {next(iter(by_kernel))} for every result; {source}"
-    parts = [f"{k} ({', '.join(f'`{d}`' for d in dirs)})" for k, dirs in sorted(by_kernel.items())]
-    return f"- BLAS kernels: **mixed**: {'; '.join(parts)}; {source}"
 
 
 def summarise(case: dict) -> dict:

@@ -1,7 +1,7 @@
-"""The source a validation report was made from: the git commit and whether the working
-tree was clean, and the README's generated section (the text between its summary
-markers), which a report run may rewrite without making the tree count as changed.
-Used by make_report.py; standard library only."""
+"""Where a validation report's results come from: the git commit and whether the working
+tree was clean, the BLAS kernels the results ran on, and the README's generated section
+(the text between its summary markers), which a report run may rewrite without making the
+tree count as changed. Used by make_report.py; standard library only."""
 
 from __future__ import annotations
 
@@ -147,3 +147,19 @@ def update_readme(readme: Path, section: str) -> bool:
     tmp.write_text(before + section + after, encoding="utf-8")
     tmp.replace(readme)
     return True
+
+
+def kernels_line(cases: list[dict]) -> str:
+    """The BLAS kernels the results ran on (result.json "environment"): long runs differ
+    in the last bits between OpenBLAS's kernels (docs/design_notes.md section 32), so a
+    report made from results of several kernels says which ran where."""
+    by_kernel: dict[str, list[str]] = {}
+    for case in cases:
+        env = case.get("environment")
+        kernels = env.get("blas_kernels") if isinstance(env, dict) else None
+        by_kernel.setdefault(str(kernels) if kernels else "not recorded", []).append(str(case["dir"]))
+    source = "OpenBLAS, `OPENBLAS_CORETYPE` (`scripts/blas_kernels.sh`; docs/design_notes.md section 32)"
+    if len(by_kernel) == 1:
+        return f"- BLAS kernels: {next(iter(by_kernel))} for every result; {source}"
+    parts = [f"{k} ({', '.join(f'`{d}`' for d in dirs)})" for k, dirs in sorted(by_kernel.items())]
+    return f"- BLAS kernels: **mixed**: {'; '.join(parts)}; {source}"

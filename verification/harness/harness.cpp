@@ -599,8 +599,8 @@ int run_harness(int argc, char** argv, const CaseDefinition& def) {
     result["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - runner_start).count();
     // What the numbers depend on beyond the source: long runs differ in the last bits
     // between OpenBLAS's kernels (docs/design_notes.md section 32).
-    result["environment"] = {{"threads", dda::applied_threads()},
-                             {"blas_kernels", dda::blas_kernels().empty() ? "unknown" : dda::blas_kernels()}};
+    const std::string kernels = dda::blas_kernels();
+    result["environment"] = {{"threads", dda::applied_threads()}, {"blas_kernels", kernels.empty() ? "unknown" : kernels}};
     const bool gating_match = record_checks(checks, result);
     const bool all_match = result["status"] == "pass";
     nlohmann::json& metrics = result["metrics"] = nlohmann::json::object();
