@@ -5,11 +5,14 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #ifdef HFDDA_HAVE_MPI
 #include <mpi.h>
@@ -26,9 +29,9 @@ int launcher_size() {
   return 0;
 }
 
-void nap() {
-  const timespec one_ms{0, 1000000};
-  nanosleep(&one_ms, nullptr);
+void nap(long milliseconds = 1) {
+  const timespec pause{milliseconds / 1000, (milliseconds % 1000) * 1000000};
+  nanosleep(&pause, nullptr);
 }
 
 #ifdef HFDDA_HAVE_MPI
@@ -36,17 +39,30 @@ void nap() {
 constexpr int kTagRequest = 1;  // worker -> rank 0: {outcome, wall in microseconds}
 constexpr int kTagIndex = 2;    // rank 0 -> worker: next index, or -1
 constexpr std::int64_t kNone = 0, kCompleted = 1, kFailed = 2;
+/// Rank 0's service thread looks for requests this often: each look wakes a thread on a
+/// core a solver computes on, so not every millisecond, while a realisation lasts
+/// seconds (design notes section 20).
+constexpr long kServicePollMs = 20;
 
-/// Rank 0: hands out realisations to itself (in next()) and to the other ranks (in
-/// serve(), between its own steps), and keeps the progress counts.
+/// Rank 0: hands out realisations to itself (in next()) and to the other ranks. A
+/// service thread answers the other ranks within kServicePollMs, whatever rank 0's own
+/// realisation is doing: answered only between rank 0's time steps, a rank that came
+/// free waited for the rest of that step, which in a network realisation can take tens
+/// of seconds (traced: 99 s of waiting in the Marcellus study, design notes section 20).
+/// Without MPI_THREAD_SERIALIZED (an MPI built without thread support) rank 0
+/// answers between its steps, as serve() is called there.
 class Dispatcher : public ensemble::WorkQueue {
  public:
-  Dispatcher(int size, std::vector<long> pending, bool show_progress)
-      : size_(size), pending_(std::move(pending)), show_progress_(show_progress), terminal_(isatty(fileno(stderr))) {}
+  Dispatcher(int size, std::vector<long> pending, bool show_progress, bool threaded)
+      : size_(size), pending_(std::move(pending)), show_progress_(show_progress), terminal_(isatty(fileno(stderr))) {
+    if (threaded && size_ > 1) service_ = std::thread([this] { answer_until_stopped(); });
+  }
+  ~Dispatcher() override { stop_service(); }
 
   std::optional<long> next(const std::optional<ensemble::Outcome>& finished) override {
+    if (!service_.joinable()) serve();
+    std::lock_guard<std::mutex> lock(mutex_);
     if (finished) count(finished->failed ? kFailed : kCompleted, finished->wall_s), --running_;
-    serve();
     std::optional<long> index = take();
     if (index) ++running_;
     report(true);
@@ -54,31 +70,58 @@ class Dispatcher : public ensemble::WorkQueue {
   }
 
   void serve() override {
-    int waiting = 0;
-    MPI_Status status;
-    while (MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &waiting, &status) == MPI_SUCCESS && waiting) {
-      std::int64_t request[2];
-      MPI_Recv(request, 2, MPI_INT64_T, status.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      if (request[0] != kNone) count(request[0], request[1] * 1e-6), --running_;
-      const std::optional<long> index = take();
-      std::int64_t reply = index ? *index : -1;
-      if (index) ++running_;
-      else ++retired_;
-      MPI_Send(&reply, 1, MPI_INT64_T, status.MPI_SOURCE, kTagIndex, MPI_COMM_WORLD);
-      report(false);
+    if (service_.joinable()) return;
+    while (answer_one()) {
     }
   }
 
   void finish() override {
-    while (retired_ < size_ - 1) {
-      serve();
+    for (;;) {
+      if (!service_.joinable()) serve();
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (retired_ >= size_ - 1) break;
+      }
       nap();
     }
+    stop_service();
+    std::lock_guard<std::mutex> lock(mutex_);
     report(true);
     if (show_progress_ && terminal_) std::fprintf(stderr, "\n");
   }
 
  private:
+  /// Answers one waiting request; false when none is waiting. MPI is called from one
+  /// thread at a time: the service thread while it runs, the main thread otherwise.
+  bool answer_one() {
+    int waiting = 0;
+    MPI_Status status;
+    if (MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &waiting, &status) != MPI_SUCCESS || !waiting)
+      return false;
+    std::int64_t request[2];
+    MPI_Recv(request, 2, MPI_INT64_T, status.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    std::int64_t reply = -1;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (request[0] != kNone) count(request[0], request[1] * 1e-6), --running_;
+      const std::optional<long> index = take();
+      if (index) reply = *index, ++running_;
+      else ++retired_;
+      report(false);
+    }
+    MPI_Send(&reply, 1, MPI_INT64_T, status.MPI_SOURCE, kTagIndex, MPI_COMM_WORLD);
+    return true;
+  }
+  void answer_until_stopped() {
+    while (!stopping_.load()) {
+      if (!answer_one()) nap(kServicePollMs);
+    }
+  }
+  void stop_service() {
+    if (!service_.joinable()) return;
+    stopping_.store(true);
+    service_.join();
+  }
   std::optional<long> take() {
     if (cursor_ >= pending_.size()) return std::nullopt;
     return pending_[cursor_++];
@@ -102,12 +145,16 @@ class Dispatcher : public ensemble::WorkQueue {
   bool show_progress_, terminal_;
   int done_ = 0, failed_ = 0, running_ = 0, retired_ = 0, shown_done_ = -1;
   double wall_s_ = 0.0;
+  std::mutex mutex_;  // the counts and the cursor, shared by the service thread and next()
+  std::atomic<bool> stopping_{false};
+  std::thread service_;
 };
 
 /// Ranks > 0: ask rank 0 for the next realisation, reporting how the last one went.
 class Worker : public ensemble::WorkQueue {
  public:
-  explicit Worker(std::function<bool()> stop_requested) : stop_requested_(std::move(stop_requested)) {}
+  Worker(int rank, std::function<bool()> stop_requested) : rank_(rank), stop_requested_(std::move(stop_requested)) {}
+  int process() const override { return rank_; }
 
   std::optional<long> next(const std::optional<ensemble::Outcome>& finished) override {
     std::int64_t request[2] = {kNone, 0};
@@ -117,7 +164,7 @@ class Worker : public ensemble::WorkQueue {
     MPI_Request pending;
     MPI_Irecv(&reply, 1, MPI_INT64_T, 0, kTagIndex, MPI_COMM_WORLD, &pending);
     int done = 0;
-    // Rank 0 answers between its own steps: wait asleep, not spinning on a shared core.
+    // Wait asleep, not spinning on a core another rank computes on.
     while (MPI_Test(&pending, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && !done) {
       if (stop_requested_ && stop_requested_()) {
         MPI_Cancel(&pending);
@@ -131,6 +178,7 @@ class Worker : public ensemble::WorkQueue {
   }
 
  private:
+  int rank_;
   std::function<bool()> stop_requested_;
 };
 
@@ -143,7 +191,10 @@ ProcessGroup start_processes(int* argc, char*** argv) {
   const int size = launcher_size();
   if (size == 0) return group;
 #ifdef HFDDA_HAVE_MPI
-  MPI_Init(argc, argv);
+  int provided = MPI_THREAD_SINGLE;
+  // Rank 0's dispatcher answers from a thread of its own, one MPI call at a time.
+  MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided);
+  group.threaded_dispatch = provided >= MPI_THREAD_SERIALIZED;
   MPI_Comm_rank(MPI_COMM_WORLD, &group.rank);
   MPI_Comm_size(MPI_COMM_WORLD, &group.size);
   group.mpi = true;
@@ -178,8 +229,8 @@ std::unique_ptr<ensemble::WorkQueue> make_work_queue(const ProcessGroup& group, 
                                                      bool show_progress, std::function<bool()> stop_requested) {
 #ifdef HFDDA_HAVE_MPI
   if (group.mpi && group.size > 1) {
-    if (group.rank == 0) return std::make_unique<Dispatcher>(group.size, std::move(pending), show_progress);
-    return std::make_unique<Worker>(std::move(stop_requested));
+    if (group.rank == 0) return std::make_unique<Dispatcher>(group.size, std::move(pending), show_progress, group.threaded_dispatch);
+    return std::make_unique<Worker>(group.rank, std::move(stop_requested));
   }
 #else
   (void)group;

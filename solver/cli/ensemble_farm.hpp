@@ -16,7 +16,8 @@ namespace hfdda::cli {
 struct ProcessGroup {
   int rank = 0;
   int size = 1;
-  bool mpi = false;  ///< started with MPI_Init (launched by mpirun)
+  bool mpi = false;  ///< started with MPI_Init_thread (launched by mpirun)
+  bool threaded_dispatch = false;  ///< MPI allows rank 0 to answer the others from a thread of its own
 };
 
 /// Starts MPI when this process was launched by an MPI launcher (its environment says
@@ -31,7 +32,8 @@ int share_from_rank0(const ProcessGroup& group, int value);
 
 /// The work queue of this process: the pending realisations in order for one process;
 /// for MPI, rank 0 hands them out (pending is read on rank 0 only) and answers the others
-/// between the steps of its own realisations. Waiting ranks sleep between polls rather
+/// from a service thread as soon as they ask (between the steps of its own realisations
+/// when MPI offers no thread support). Waiting ranks sleep between polls rather
 /// than spin, so that ranks sharing cores do not slow each other. `stop_requested` ends a
 /// wait. `show_progress`: rank 0 prints done / failed / running / time left.
 std::unique_ptr<ensemble::WorkQueue> make_work_queue(const ProcessGroup& group, std::vector<long> pending,

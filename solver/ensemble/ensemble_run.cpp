@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -137,6 +138,7 @@ json record_json(const RealisationRecord& r) {
          {"open_length_m", r.open_length_m},
          {"wet_length_m", r.wet_length_m},
          {"peak_memory_mb", r.peak_memory_mb},
+         {"schedule", {{"process", r.process}, {"started_unix_s", r.started_unix_s}, {"waited_s", r.waited_s}}},
          {"mesh", {{"joints", r.mesh.joints}, {"hash", r.mesh.hash}}}};
   json& seeds = j["seeds"];
   for (const auto& [group, seed] : r.seeds.of_group) seeds[group] = seed;
@@ -168,6 +170,12 @@ RealisationRecord record_from(const json& j) {
   r.open_length_m = j.at("open_length_m");
   r.wet_length_m = j.at("wet_length_m");
   r.peak_memory_mb = j.value("peak_memory_mb", 0.0);
+  if (j.contains("schedule")) {  // records written before it was kept have none
+    const json& at = j.at("schedule");
+    r.process = at.at("process");
+    r.started_unix_s = at.at("started_unix_s");
+    r.waited_s = at.at("waited_s");
+  }
   r.mesh.joints = j.at("mesh").at("joints");
   r.mesh.hash = j.at("mesh").at("hash");
   r.seeds.index = r.index;
@@ -202,6 +210,37 @@ std::vector<JointSegment> read_joint_geometry(const std::string& path) {
     joints.push_back({Vec2(v[0], v[1]), Vec2(v[2], v[3]), v[4] != 0.0});
   }
   return joints;
+}
+
+/// How the processes spent the time between the first realisation's start and the
+/// last one's end: the realisations' own time, the waits for an index, and the idle
+/// time at the end (a process done while another still runs its last realisation).
+/// Records written before the schedule was kept have no start time and are left out.
+json schedule_summary(const std::map<long, RealisationRecord>& by_index) {
+  std::map<int, double> last_end_of_process;
+  double first_start = 0.0, last_end = 0.0, waited = 0.0, busy = 0.0, longest_wait = 0.0;
+  int timed = 0;
+  for (const auto& [index, r] : by_index) {
+    if (r.started_unix_s <= 0.0) continue;
+    const double end = r.started_unix_s + r.wall_s;
+    first_start = timed == 0 ? r.started_unix_s : std::min(first_start, r.started_unix_s);
+    last_end = std::max(last_end, end);
+    double& process_end = last_end_of_process[r.process];
+    process_end = std::max(process_end, end);
+    waited += r.waited_s;
+    longest_wait = std::max(longest_wait, r.waited_s);
+    busy += r.wall_s;
+    ++timed;
+  }
+  double idle_at_end = 0.0;
+  for (const auto& [process, end] : last_end_of_process) idle_at_end += last_end - end;
+  return {{"realisations_timed", timed},
+          {"processes_seen", last_end_of_process.size()},
+          {"span_s", timed ? last_end - first_start : 0.0},
+          {"busy_s", busy},
+          {"waited_for_index_s", waited},
+          {"longest_wait_s", longest_wait},
+          {"idle_at_end_s", idle_at_end}};
 }
 
 }  // namespace
@@ -309,7 +348,14 @@ std::string progress_text(int done, int failed, int running, int total, double m
 bool run_realisations(const io::CaseConfig& config, const EnsembleGeometry& geometry, const std::string& dir,
                       WorkQueue& queue, const std::function<bool()>& stop_requested) {
   std::optional<Outcome> finished;
-  while (const std::optional<long> index = queue.next(finished)) {
+  using Clock = std::chrono::steady_clock;
+  for (;;) {
+    const Clock::time_point asked = Clock::now();
+    const std::optional<long> index = queue.next(finished);
+    if (!index) break;
+    const double waited_s = std::chrono::duration<double>(Clock::now() - asked).count();
+    const double started_unix_s =
+        std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
     std::optional<RealisationRecord> record;
     try {
       record = run_realisation(config, geometry, *index, stop_requested, [&queue] { queue.serve(); });
@@ -325,6 +371,9 @@ bool run_realisations(const io::CaseConfig& config, const EnsembleGeometry& geom
       record->mesh = geometry.mesh;
     }
     if (!record) return false;
+    record->process = queue.process();
+    record->started_unix_s = started_unix_s;
+    record->waited_s = waited_s;
     write_record(dir, *record);
     finished = Outcome{record->status == "failed", record->wall_s};
     if (stop_requested && stop_requested()) return false;
@@ -372,6 +421,7 @@ EnsembleSummary write_ensemble_maps(const std::string& out_dir, const std::vecto
   }
   for (long i = 0; i < first.realisations; ++i)
     if (!by_index.count(i)) summary.missing.push_back(i);
+  const json schedule = schedule_summary(by_index);
   std::vector<std::vector<ConvergencePoint>> convergence;
   for (std::size_t t = 0; t < first.map_times_s.size(); ++t)
     convergence.push_back(grid_convergence(all, first.grid, static_cast<int>(t)));
@@ -392,6 +442,7 @@ EnsembleSummary write_ensemble_maps(const std::string& out_dir, const std::vecto
          {"wall_s_total", wall},
          {"wall_s_per_realisation", summary.found ? wall / summary.found : 0.0},
          {"peak_memory_mb_per_process", peak_memory_mb},
+         {"schedule", schedule},
          {"sources", dirs}};
   json& per_time = s["maps"];
   per_time = json::array();

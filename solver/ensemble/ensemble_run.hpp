@@ -75,10 +75,13 @@ class WorkQueue {
   /// The next realisation for this process, or none when all are handed out;
   /// `finished` tells how the previous one of this process went.
   virtual std::optional<long> next(const std::optional<Outcome>& finished) = 0;
-  /// Called between steps while a realisation runs (rank 0 answers the others).
+  /// Called between steps while a realisation runs (rank 0 answers the others there when
+  /// MPI gives it no service thread).
   virtual void serve() {}
   /// After the last next(): rank 0 waits for every other process to finish.
   virtual void finish() {}
+  /// The rank of this process (0 on one process).
+  virtual int process() const { return 0; }
 };
 
 /// In order, one process.

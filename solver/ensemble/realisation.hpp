@@ -63,6 +63,10 @@ struct RealisationRecord {
   double mass_injected_kg = 0.0;                 ///< per metre
   double open_length_m = 0.0, wet_length_m = 0.0;  ///< at the end
   double peak_memory_mb = 0.0;  ///< peak resident memory of the process that ran it, so far
+  // Where and when it ran, to trace how the processes spent the ensemble's elapsed time.
+  int process = 0;              ///< rank that ran it (0 on one process)
+  double started_unix_s = 0.0;  ///< wall-clock start, seconds since 1970
+  double waited_s = 0.0;        ///< time its process waited for this index after its previous one
   MeshSignature mesh;
   RealisationMaps maps;      ///< one snapshot per map time reached
 };

@@ -191,5 +191,49 @@ TEST(EnsembleRecords, ACorruptRecordIsAnErrorNamingItsFile) {
   }
 }
 
+// Each record says where and when it ran; the summary adds up how the processes spent
+// the span: the realisations, the waits for an index, and the idle time at the end.
+TEST(EnsembleRecords, ScheduleIsKeptAndSummed) {
+  const io::CaseConfig config = io::load_case_file(kTinyCase);
+  const ensemble::EnsembleGeometry geometry = ensemble::ensemble_geometry(config);
+  const std::string dir = (std::filesystem::path(testing::TempDir()) / "hfdda_ensemble_schedule").string();
+  std::filesystem::remove_all(dir);
+  ensemble::prepare_directory(dir, ensemble::make_manifest(config, geometry, {}), geometry);
+  // {index, process, start [s], waited [s], wall [s]}: process 0 ends at 115, process 1 at 121.
+  const double runs[3][5] = {{0, 0, 100.0, 0.0, 10.0}, {1, 1, 101.0, 1.0, 20.0}, {2, 0, 110.0, 0.0, 5.0}};
+  for (const auto& run : runs) {
+    ensemble::RealisationRecord r;
+    r.index = static_cast<long>(run[0]);
+    r.status = "completed";
+    r.seeds = ensemble::realisation_seeds(*config.ensemble, r.index);
+    r.maps.index = r.index;
+    r.mesh = geometry.mesh;
+    r.process = static_cast<int>(run[1]);
+    r.started_unix_s = 1.7e9 + run[2];
+    r.waited_s = run[3];
+    r.wall_s = run[4];
+    ensemble::write_record(dir, r);
+  }
+  const ensemble::RealisationRecord back = ensemble::read_record(dir + "/realisations/r000001.json");
+  EXPECT_EQ(back.process, 1);
+  EXPECT_EQ(back.started_unix_s, 1.7e9 + 101.0);
+  EXPECT_EQ(back.waited_s, 1.0);
+
+  ensemble::write_ensemble_maps(dir, {dir});
+  std::ifstream in(dir + "/ensemble_summary.json");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto number_after = [&](const std::string& key) {
+    const std::size_t at = text.find("\"" + key + "\":");
+    EXPECT_NE(at, std::string::npos) << key;
+    return at == std::string::npos ? -1.0 : std::stod(text.substr(at + key.size() + 3));
+  };
+  EXPECT_EQ(number_after("realisations_timed"), 3.0);
+  EXPECT_EQ(number_after("processes_seen"), 2.0);
+  EXPECT_NEAR(number_after("span_s"), 21.0, 1e-6);
+  EXPECT_NEAR(number_after("busy_s"), 35.0, 1e-9);
+  EXPECT_NEAR(number_after("waited_for_index_s"), 1.0, 1e-9);
+  EXPECT_NEAR(number_after("idle_at_end_s"), 6.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace hfdda

@@ -164,6 +164,17 @@ Metrics variant_metrics(const VariantRun& r) {
   // Busy time of the realisations over the processes' elapsed time.
   m.numbers["parallel_efficiency"] =
       r.run.wall_seconds > 0 ? double(s.at("wall_s_total")) / (processes * r.run.wall_seconds) : kNaN;
+  // Where the rest of processes x elapsed went (ensemble_run.cpp, schedule_summary).
+  for (const char* key : {"waited_for_index_s", "longest_wait_s", "idle_at_end_s", "outside_realisations_s"})
+    m.numbers[key] = kNaN;  // unless every record of this run says when and where it ran
+  if (s.contains("schedule") && s.at("schedule").at("realisations_timed") == requested) {
+    const nlohmann::json& at = s.at("schedule");
+    m.numbers["waited_for_index_s"] = at.at("waited_for_index_s");
+    m.numbers["longest_wait_s"] = at.at("longest_wait_s");
+    m.numbers["idle_at_end_s"] = at.at("idle_at_end_s");
+    m.numbers["outside_realisations_s"] = processes * r.run.wall_seconds - double(at.at("busy_s")) -
+                                          double(at.at("waited_for_index_s")) - double(at.at("idle_at_end_s"));
+  }
   m.json["failures"] = s.at("failures");
 
   const nlohmann::json manifest = nlohmann::json::parse(read_text(dir + "/ensemble.json"));
