@@ -122,7 +122,10 @@ Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {
   bool stiffness_changed = true;
   for (int oc = 1; oc <= max_iterations; ++oc) {
     stats.open_close_iterations = oc;
-    if (stiffness_changed) mechanics_.assemble_and_factorise(stats);
+    if (stiffness_changed) {
+      mechanics_.assemble_and_factorise(stats);
+      if (mechanics_.settings().converged_response() && !fluids_.empty()) mechanics_.factorise_converged_response(stats);
+    }
     const auto start = Clock::now();
     for (FluidLoadModel* f : fluids_) f->prepare(mechanics_, stiffness_changed);
     stats.seconds_solve += seconds_since(start);

@@ -31,8 +31,18 @@ void HydroMechanicalCoupling::begin_step(dda::BlockSystem& system, double dt_s) 
   refresh_pressurised();
 }
 
+Eigen::VectorXd HydroMechanicalCoupling::end_gaps(const Eigen::VectorXd& u) const {
+  Eigen::VectorXd out(gaps_.size());
+  for (std::size_t e = 0; e < gaps_.size(); ++e) {
+    const auto& g = gaps_[e];
+    out[e] = g.row_a.dot(u.segment<6>(6 * g.block_a)) + g.row_b.dot(u.segment<6>(6 * g.block_b));
+  }
+  return out;
+}
+
 void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiffness_changed) {
   if (!stiffness_changed && !topology_changed_) return;
+  pressure_response_valid_ = false;
   const dda::SpdSolver& solver = system.solver();
   const auto start = Clock::now();
   const auto& fractures = network_.trial_fractures();
@@ -76,13 +86,16 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     return;
   }
   operator_.reset();
-  if (!topology_changed_ && correct_sensitivity(solver)) {
+  const bool converged_response = system.settings().converged_response();
+  if (!topology_changed_ && !converged_response && correct_sensitivity(solver)) {
     ++stats_.sensitivity_corrections;
     stats_.seconds_sensitivity += seconds_since(start);
     return;
   }
 
-  // S = J K^-1 B, a few dozen columns per solve.
+  // S = J K^-1 B, a few dozen columns per solve; with K's iterated springs stiffened,
+  // the response of the converged contact problem (respond() then shifts the base).
+  const dda::SpdSolver& response = converged_response ? system.converged_response_solver() : solver;
   sensitivity_.setZero(2 * nf, n);
   Eigen::MatrixXd rhs;
   for (int first = 0; first < n; first += kColumnsPerSolve) {
@@ -90,12 +103,19 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     rhs.setZero(6 * nb, cols);
     for (int c = 0; c < cols; ++c)
       for (const NodeLoad& l : loads_[first + c]) rhs.block<6, 1>(6 * l.block, c) += l.force;
-    const Eigen::MatrixXd x = solver.solve(rhs);
+    const Eigen::MatrixXd x = response.solve(rhs);
     for (int e = 0; e < 2 * nf; ++e) {
       const auto& g = gaps_[e];
       sensitivity_.row(e).segment(first, cols) =
           g.row_a * x.middleRows<6>(6 * g.block_a) + g.row_b * x.middleRows<6>(6 * g.block_b);
     }
+  }
+  if (converged_response) {
+    base_factorization_ = -1;
+    ++stats_.sensitivity_builds;
+    topology_changed_ = false;
+    stats_.seconds_sensitivity += seconds_since(start);
+    return;
   }
   // The base of later corrections: S of the factorised K0, without this K's changes.
   sensitivity_base_ = sensitivity_;
@@ -147,6 +167,22 @@ void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::Vec
     base[e] = g.gap0_m + g.row_a.dot(d.segment<6>(6 * g.block_a)) +
               g.row_b.dot(d.segment<6>(6 * g.block_b));
   }
+  if (system.settings().converged_response() && !operator_) {
+    // S is the converged contact problem's response S_c, the base that of K at this
+    // iteration's multipliers: linearise about the pressures p_ref of the last flow solve,
+    // w(p) = base + J K^-1 B p_ref + S_c (p - p_ref), so that where the multipliers have
+    // converged (p = p_ref) the flow solve sees the apertures K gives.
+    // J K^-1 B p_ref is the last respond()'s, unless K or the network changed since.
+    const Eigen::VectorXd& p_ref = network_.trial_pressure();
+    if (!pressure_response_valid_) {
+      work_.setZero(6 * system.n_blocks());
+      for (int i = 0; i < p_ref.size(); ++i)
+        for (const NodeLoad& l : loads_[i]) work_.segment<6>(6 * l.block) += p_ref[i] * l.force;
+      pressure_response_ = end_gaps(system.solver().solve(work_));
+    }
+    base += pressure_response_;
+    base.noalias() -= sensitivity_ * p_ref;
+  }
   fluid::FlowSolveStatistics fs;
   if (operator_) {
     const long products = operator_->products(), iterations = operator_->linear_iterations(),
@@ -168,7 +204,12 @@ void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::Vec
   work_.setZero(6 * system.n_blocks());
   for (int i = 0; i < p.size(); ++i)
     for (const NodeLoad& l : loads_[i]) work_.segment<6>(6 * l.block) += p[i] * l.force;
-  d += system.solver().solve(work_);  // the mechanical displacement plus K^-1 B p
+  const Eigen::VectorXd pressure_displacement = system.solver().solve(work_);
+  d += pressure_displacement;  // the mechanical displacement plus K^-1 B p
+  if (system.settings().converged_response() && !operator_) {
+    pressure_response_ = end_gaps(pressure_displacement);
+    pressure_response_valid_ = true;
+  }
   stats_.seconds_flow += seconds_since(start);
 }
 

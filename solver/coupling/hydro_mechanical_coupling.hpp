@@ -81,6 +81,8 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   /// (J W) M^-1 (W^T B): what the low-rank changes of K take off J K0^-1 B.
   Eigen::MatrixXd low_rank_correction(const dda::SpdSolver& solver) const;
   bool use_krylov() const { return jacobian_ == FlowJacobian::krylov; }
+  /// J u: the normal gaps of the fracture ends for block displacements u.
+  Eigen::VectorXd end_gaps(const Eigen::VectorXd& u) const;
 
   fluid::FlowNetwork& network_;
   FlowJacobian jacobian_;
@@ -97,6 +99,9 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   Eigen::VectorXd work_;
   std::vector<char> pressurised_;
   CouplingStatistics stats_;
+  // J K^-1 B p of the last respond() (converged response): valid until K or the network changes.
+  Eigen::VectorXd pressure_response_;
+  bool pressure_response_valid_ = false;
 };
 
 }  // namespace hfdda::coupling

@@ -124,6 +124,15 @@ void BlockSystem::add_joint_pressure_load(int j, double pressure_p_Pa, double pr
     const Vec2 u = corner(block, start_corner), v = blocks_.next_corner(block, start_corner);
     const Vec2 n = outward_normal(u, v);
     const double length = (v - u).norm();
+    if (settings_.lumped_fluid_load) {
+      // Trapezoidal rule: each end's pressure as a force L p / 2 at its corner, the load
+      // work-conjugate to the network's lumped nodal volumes L w / 2 (seed 2.1), which
+      // keeps d(volume)/d(pressure) symmetric (design notes section 19).
+      const Vec2 c = moments_[block].centroid;
+      forces.segment<6>(6 * block) += 0.5 * length * (displacement_matrix(u, c).transpose() * (-p_start * n) +
+                                                      displacement_matrix(v, c).transpose() * (-p_end * n));
+      return;
+    }
     for (double s : kGaussPoint) {
       const double p = (1.0 - s) * p_start + s * p_end;
       const Mat26 t = displacement_matrix(u + s * (v - u), moments_[block].centroid);

@@ -62,6 +62,26 @@ void BlockSystem::assemble_and_factorise(StepStatistics& stats) {
   factorised_held_blocks_ = held_blocks_;
 }
 
+void BlockSystem::factorise_converged_response(StepStatistics& stats) {
+  const double stiffening = settings_.converged_response_stiffening;
+  auto start = Clock::now();
+  stiffened_ = stiffness_;
+  if (settings_.augmented_lagrangian)
+    for (const auto& c : contacts_.all()) {
+      if (c.state == ContactState::open || !iterated(c)) continue;
+      const ContactTerms terms = contact_terms(c);  // the normal springs, and the shear ones when locked
+      for (int k = 0; k < 4; ++k) {
+        if (!terms.present[k]) continue;
+        add_spring_term(stiffened_, c.springs[k / 2].slot, terms.term[k], (stiffening - 1.0) * terms.term[k].stiffness);
+      }
+    }
+  stats.seconds_assembly += seconds_since(start);
+  start = Clock::now();
+  stiffened_solver_.factorize(stiffened_.matrix());
+  stats.seconds_factorization += seconds_since(start);
+  ++stats.factorizations;
+}
+
 std::string BlockSystem::describe_unknown(int unknown) const {
   if (unknown < 0 || unknown >= 6 * n_blocks()) return "";
   static const char* const names[6] = {"x translation", "y translation", "rotation",

@@ -104,6 +104,16 @@ struct MechanicsSettings {
   /// correction (Woodbury identity, SpdSolver::modify) instead of a new factorisation,
   /// up to BlockSystem::kMaxLowRank springs (docs/design_notes.md section 26).
   bool low_rank_updates = false;
+  /// With the Augmented Lagrangian: > 1, a coupled fluid model takes the apertures'
+  /// response to its pressures from K with the iterated springs this many times stiffer
+  /// (the response of the converged contact problem) rather than from K at fixed
+  /// multipliers; one more factorisation per change of K (docs/design_notes.md section 19).
+  /// 0 or 1: off.
+  double converged_response_stiffening = 0.0;
+  /// Fluid pressure on joint faces as forces L p / 2 at the corners (trapezoidal rule)
+  /// rather than integrated exactly along the face (design notes section 19).
+  bool lumped_fluid_load = false;
+  bool converged_response() const { return augmented_lagrangian && converged_response_stiffening > 1.0; }
 };
 
 /// Linearised normal separation of a joint's faces at one end, the mean of the
@@ -176,6 +186,13 @@ class BlockSystem {
   void assemble_and_factorise(StepStatistics& stats);
   /// The factorisation of the last assemble_and_factorise().
   const SpdSolver& solver() const { return solver_; }
+  /// K with the springs of the iterated (Augmented Lagrangian) contacts
+  /// converged_response_stiffening times stiffer, factorised: with them stiff, K^-1 approaches the response of the
+  /// converged contact problem, whose constrained gaps do not move (the multipliers'
+  /// updates included), for a coupled model that must anticipate it (docs/design_notes.md
+  /// section 19). Refactorised on each call (statistics: factorisations).
+  void factorise_converged_response(StepStatistics& stats);
+  const SpdSolver& converged_response_solver() const { return stiffened_solver_; }
   /// Start of the contact iterations of one open-close iteration.
   void begin_contact_iterations();
   /// Right-hand side F + contact terms with the current multipliers (eqs. 2.19-2.22).
@@ -316,6 +333,8 @@ class BlockSystem {
   double spring_gap(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   double spring_shear(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   [[noreturn]] void throw_alm_limit(double error, double scale) const;
+  /// matrix += stiffness e e^T for the spring term's e (the slot of its block pair).
+  static void add_spring_term(BlockSparseMatrix& matrix, int slot, const SpringTerm& t, double stiffness);
   /// The contact's multipliers are iterated (Augmented Lagrangian) rather than held (two-tier penalty).
   bool iterated(const Contact& c) const { return !settings_.two_tier_contacts || (c.joint >= 0 && c.bonded); }
   /// k_n and k_s of this contact's springs: times intact_stiffness_ratio for the iterated
@@ -366,6 +385,8 @@ class BlockSystem {
 
   BlockSparseMatrix stiffness_;
   SpdSolver solver_;
+  BlockSparseMatrix stiffened_;   // K with the iterated springs stiffened
+  SpdSolver stiffened_solver_;
   // What the factorisation in solver_ (with its low-rank changes) is of.
   bool factor_of_this_step_ = false;
   std::vector<int> factorised_held_blocks_;

@@ -34,6 +34,7 @@ void add_spring_to_rhs(Eigen::VectorXd& f, const VertexEdgeSpring& s, double wei
 void BlockSystem::rebuild_pattern() {
   stiffness_ = BlockSparseMatrix(n_blocks(), contacts_.couplings());
   solver_.reset_pattern();
+  stiffened_solver_.reset_pattern();
   factor_of_this_step_ = false;
   for (auto& c : contacts_.all())
     if (c.joint >= 0 || c.vertex_vertex_active)
@@ -63,13 +64,16 @@ void BlockSystem::assemble_contacts() {
     const ContactTerms terms = contact_terms(c);
     for (int k = 0; k < 4; ++k) {
       if (!terms.present[k]) continue;
-      const SpringTerm& t = terms.term[k];
-      stiffness_.add_diagonal(t.block_a, t.stiffness * t.row_a.transpose() * t.row_a);
-      stiffness_.add_diagonal(t.block_b, t.stiffness * t.row_b.transpose() * t.row_b);
-      stiffness_.add_coupling(c.springs[k / 2].slot, t.block_a, t.block_b, t.stiffness * t.row_a.transpose() * t.row_b);
+      add_spring_term(stiffness_, c.springs[k / 2].slot, terms.term[k], terms.term[k].stiffness);
     }
   }
   hold_mechanisms();
+}
+
+void BlockSystem::add_spring_term(BlockSparseMatrix& matrix, int slot, const SpringTerm& t, double stiffness) {
+  matrix.add_diagonal(t.block_a, stiffness * t.row_a.transpose() * t.row_a);
+  matrix.add_diagonal(t.block_b, stiffness * t.row_b.transpose() * t.row_b);
+  matrix.add_coupling(slot, t.block_a, t.block_b, stiffness * t.row_a.transpose() * t.row_b);
 }
 
 double BlockSystem::spring_gap(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const {

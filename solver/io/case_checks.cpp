@@ -313,6 +313,22 @@ void check_intact_stiffness(const CaseConfig& c, const MergedChecker& m) {
            "matrix loses all digits (got " + format_number(ratio) + " x " + format_number(factor) + ")");
 }
 
+void check_aperture_response(const CaseConfig& c, const MergedChecker& m) {
+  if (c.numerics.aperture_response != ApertureResponse::converged_contacts) return;
+  if (c.contact.method != ContactMethod::augmented_lagrangian)
+    m.fail("numerics.aperture_response",
+           "converged_contacts needs contact.method: alm (with penalty springs the response at fixed "
+           "multipliers is the converged one)");
+  if (c.numerics.flow_jacobian != FlowJacobianKind::dense)
+    m.fail("numerics.aperture_response", "converged_contacts is implemented for flow_jacobian: dense only");
+  const double factor = std::max(c.contact.normal_stiffness_factor, c.contact.shear_stiffness_factor) *
+                        (c.contact.two_tier ? c.contact.intact_stiffness_ratio : 1.0);
+  if (factor * kConvergedResponseStiffening > kMaxStiffnessFactor)
+    m.fail("numerics.aperture_response",
+           "converged_contacts stiffens the iterated springs 100 times; their stiffness factor (" +
+               format_number(factor) + ") times 100 must stay at most 1e6, beyond which K loses all digits");
+}
+
 void check_fractures_in_domain(const CaseConfig& c, const MergedChecker& m) {
   for (std::size_t i = 0; i < c.fractures.size(); ++i) {
     check_point_in_domain(c, m, c.fractures[i].from, item_key("fractures", i) + ".from");
@@ -426,6 +442,9 @@ const std::vector<CrossCheck>& cross_checks() {
       {"With `contact.two_tier`, `contact.intact_stiffness_ratio` times the larger of `normal_stiffness` and "
        "`shear_stiffness` is at most 1e6.",
        check_intact_stiffness},
+      {"`numerics.aperture_response: converged_contacts` needs `contact.method: alm` and `numerics.flow_jacobian: "
+       "dense`, and the iterated springs' stiffness factor (times `intact_stiffness_ratio` with `two_tier`) times 100 is at most 1e6.",
+       check_aperture_response},
       {"Both ends of every fracture lie in `domain.outer` (its boundary included).",
        check_fractures_in_domain},
       {"Every point-load location, fixed point, injection point and probe lies in "

@@ -276,6 +276,11 @@ enum class AnalysisKind { static_analysis, dynamic_analysis };
 enum class CycleResolution { most_open, close_penetrating };
 /// How the flow Newton's linear systems are solved (coupling::FlowJacobian).
 enum class FlowJacobianKind { dense, krylov };
+/// Which response of the apertures to the pressures the flow solve uses
+/// (dda::MechanicsSettings::converged_response_stiffening).
+enum class ApertureResponse { fixed_multipliers, converged_contacts };
+/// How the fluid pressure on a joint's faces loads the blocks (dda::MechanicsSettings::lumped_fluid_load).
+enum class FluidLoad { integrated, lumped };
 
 struct NumericsConfig {
   AnalysisKind analysis = AnalysisKind::static_analysis;  ///< static: velocities reset each step
@@ -306,6 +311,8 @@ struct NumericsConfig {
   double coupling_tolerance = 1.0e-9;   ///< relative pressure change and mass residual (erratum 2)
   int max_coupling_iterations = 60;     ///< Newton iterations on the pressures per solve
   FlowJacobianKind flow_jacobian = FlowJacobianKind::dense;  ///< dense S or S as an operator
+  ApertureResponse aperture_response = ApertureResponse::fixed_multipliers;
+  FluidLoad fluid_load = FluidLoad::integrated;
   int max_step_cuts = 4;                ///< a failed step is retried with dt halved this often
 };
 

@@ -143,6 +143,10 @@ inline constexpr double kMaxHydraulicWidth = 1e-2;
 inline constexpr double kMaxBodyForce = 1e7;         ///< N/m^3: 1000 g in rock
 inline constexpr double kMaxPointForce = 1e12;       ///< N/m: kMaxStress over 100 m
 inline constexpr double kMaxStiffnessFactor = 1e6;   ///< contact springs / max E
+/// numerics.aperture_response: converged_contacts stiffens the iterated springs this many
+/// times for the flow's aperture response: their compliance falls by two orders below
+/// what it is at k = 30 E, while k stays far from kMaxStiffnessFactor.
+inline constexpr double kConvergedResponseStiffening = 100.0;
 inline constexpr double kMaxCoordinate = 1e7;        ///< m: rectangle edges
 inline constexpr double kMaxTime = 1e10;             ///< s: about 300 years
 inline constexpr double kMaxIterations = 1e6;        ///< iteration counts

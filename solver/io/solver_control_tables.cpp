@@ -135,6 +135,24 @@ const Table<NumericsConfig>& numerics_table() {
               &NumericsConfig::flow_jacobian,
               Choices<FlowJacobianKind>{{"dense", FlowJacobianKind::dense},
                                         {"krylov", FlowJacobianKind::krylov}}),
+       choice({"aperture_response", "", "none (HFDDA)",
+               "with method alm: the response of the wetted joints' apertures to the fluid pressures that "
+               "the flow solve uses. fixed_multipliers: K with the contact multipliers of the current "
+               "iteration held, which at a crack tip or along a locked joint lets the faces open by the "
+               "springs' compliance that the next multiplier updates take back; converged_contacts: K with "
+               "the iterated springs 100 times stiffer, the response once the multipliers have converged, "
+               "about which the flow solve linearises at each iteration (one more factorisation per change "
+               "of K; design notes section 19)"},
+              &NumericsConfig::aperture_response,
+              Choices<ApertureResponse>{{"fixed_multipliers", ApertureResponse::fixed_multipliers},
+                                        {"converged_contacts", ApertureResponse::converged_contacts}}),
+       choice({"fluid_load", "", "§2.4: linear pressure along each face",
+               "how the fluid pressure on a joint's faces loads the blocks: integrated (the linear pressure "
+               "along each face integrated exactly) or lumped (each end's pressure as a force L p / 2 at its "
+               "corner, the load work-conjugate to the flow network's nodal volumes L w / 2, which makes the "
+               "flow Jacobian's volume part symmetric; design notes section 19)"},
+              &NumericsConfig::fluid_load,
+              Choices<FluidLoad>{{"integrated", FluidLoad::integrated}, {"lumped", FluidLoad::lumped}}),
        integer({"max_coupling_iterations", "", "§2.4", "pressure iterations per coupled solve"},
                &NumericsConfig::max_coupling_iterations, interval(1, false, kMaxIterations, false)),
        integer({"max_step_cuts", "", "",

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "io/case_schema.hpp"
 #include "simulation/model_flow.hpp"
 
 namespace hfdda::simulation {
@@ -455,6 +456,9 @@ dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   s.augmented_lagrangian = c.contact.method == io::ContactMethod::augmented_lagrangian;
   s.two_tier_contacts = c.contact.two_tier;
   s.intact_stiffness_ratio = c.contact.intact_stiffness_ratio;
+  if (c.numerics.aperture_response == io::ApertureResponse::converged_contacts)
+    s.converged_response_stiffening = io::schema::kConvergedResponseStiffening;
+  s.lumped_fluid_load = c.numerics.fluid_load == io::FluidLoad::lumped;
   s.normal_stiffness_N_m = c.contact.normal_stiffness_factor * max_modulus;
   s.shear_stiffness_N_m = c.contact.shear_stiffness_factor * max_modulus;
   s.fixed_point_stiffness_N_m = c.contact.fixed_point_stiffness_factor * max_modulus;

@@ -63,6 +63,21 @@ TEST(CaseFileErrors, IntactStiffnessRatioKeepsTheMatrixDigits) {
                                  "ratio.yaml"));
 }
 
+TEST(CaseFileErrors, ConvergedContactResponseNeedsTheAugmentedLagrangian) {
+  expect_text_error("contact: {method: penalty}\nnumerics: {aperture_response: converged_contacts}\n", 2,
+                    "numerics.aperture_response", "needs contact.method: alm");
+  expect_text_error("contact: {two_tier: true, normal_stiffness: 30, intact_stiffness_ratio: 1000}\n"
+                    "numerics: {aperture_response: converged_contacts}\n",
+                    2, "numerics.aperture_response", "at most 1e6");
+  expect_text_error("numerics: {aperture_response: converged}\n", 1, "numerics.aperture_response",
+                    "fixed_multipliers");
+  expect_text_error("numerics: {flow_jacobian: krylov,\n  aperture_response: converged_contacts}\n", 2,
+                    "numerics.aperture_response", "flow_jacobian: dense only");
+  EXPECT_NO_THROW(load_case_text("contact: {two_tier: true, normal_stiffness: 30}\n"
+                                 "numerics: {aperture_response: converged_contacts, fluid_load: lumped}\n",
+                                 "response.yaml"));
+}
+
 TEST(CaseFileErrors, DuplicateKey) {
   expect_text_error("time: {dt: 1}\ntitle: a\ntime: {dt: 2}\n", 3, "time", "duplicate key");
 }
