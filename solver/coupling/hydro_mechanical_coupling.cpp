@@ -40,6 +40,14 @@ Eigen::VectorXd HydroMechanicalCoupling::end_gaps(const Eigen::VectorXd& u) cons
   return out;
 }
 
+const Eigen::VectorXd& HydroMechanicalCoupling::pressure_load(const dda::BlockSystem& system,
+                                                              const Eigen::VectorXd& p) {
+  work_.setZero(6 * system.n_blocks());
+  for (int i = 0; i < p.size(); ++i)
+    for (const NodeLoad& l : loads_[i]) work_.segment<6>(6 * l.block) += p[i] * l.force;
+  return work_;
+}
+
 void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiffness_changed) {
   if (!stiffness_changed && !topology_changed_) return;
   pressure_response_valid_ = false;
@@ -111,17 +119,14 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     }
   }
   if (converged_response) {
-    base_factorization_ = -1;
-    ++stats_.sensitivity_builds;
-    topology_changed_ = false;
-    stats_.seconds_sensitivity += seconds_since(start);
-    return;
+    base_factorization_ = -1;  // S_c is not corrected for low-rank changes of K
+  } else {
+    // The base of later corrections: S of the factorised K0, without this K's changes.
+    sensitivity_base_ = sensitivity_;
+    if (solver.modified_rank() > 0) sensitivity_base_ += low_rank_correction(solver);
+    base_factorization_ = solver.factorizations();
+    base_gaps_ = gaps_;
   }
-  // The base of later corrections: S of the factorised K0, without this K's changes.
-  sensitivity_base_ = sensitivity_;
-  if (solver.modified_rank() > 0) sensitivity_base_ += low_rank_correction(solver);
-  base_factorization_ = solver.factorizations();
-  base_gaps_ = gaps_;
   ++stats_.sensitivity_builds;
   topology_changed_ = false;
   stats_.seconds_sensitivity += seconds_since(start);
@@ -174,12 +179,7 @@ void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::Vec
     // converged (p = p_ref) the flow solve sees the apertures K gives.
     // J K^-1 B p_ref is the last respond()'s, unless K or the network changed since.
     const Eigen::VectorXd& p_ref = network_.trial_pressure();
-    if (!pressure_response_valid_) {
-      work_.setZero(6 * system.n_blocks());
-      for (int i = 0; i < p_ref.size(); ++i)
-        for (const NodeLoad& l : loads_[i]) work_.segment<6>(6 * l.block) += p_ref[i] * l.force;
-      pressure_response_ = end_gaps(system.solver().solve(work_));
-    }
+    if (!pressure_response_valid_) pressure_response_ = end_gaps(system.solver().solve(pressure_load(system, p_ref)));
     base += pressure_response_;
     base.noalias() -= sensitivity_ * p_ref;
   }
@@ -201,10 +201,7 @@ void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::Vec
   refresh_pressurised();
 
   const Eigen::VectorXd& p = network_.trial_pressure();
-  work_.setZero(6 * system.n_blocks());
-  for (int i = 0; i < p.size(); ++i)
-    for (const NodeLoad& l : loads_[i]) work_.segment<6>(6 * l.block) += p[i] * l.force;
-  const Eigen::VectorXd pressure_displacement = system.solver().solve(work_);
+  const Eigen::VectorXd pressure_displacement = system.solver().solve(pressure_load(system, p));
   d += pressure_displacement;  // the mechanical displacement plus K^-1 B p
   if (system.settings().converged_response() && !operator_) {
     pressure_response_ = end_gaps(pressure_displacement);

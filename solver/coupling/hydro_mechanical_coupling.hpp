@@ -81,6 +81,8 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   /// (J W) M^-1 (W^T B): what the low-rank changes of K take off J K0^-1 B.
   Eigen::MatrixXd low_rank_correction(const dda::SpdSolver& solver) const;
   bool use_krylov() const { return jacobian_ == FlowJacobian::krylov; }
+  /// B p: the block forces of nodal pressures p (in work_).
+  const Eigen::VectorXd& pressure_load(const dda::BlockSystem& system, const Eigen::VectorXd& p);
   /// J u: the normal gaps of the fracture ends for block displacements u.
   Eigen::VectorXd end_gaps(const Eigen::VectorXd& u) const;
 

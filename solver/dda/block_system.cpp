@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/errors.hpp"
 
@@ -63,18 +64,17 @@ void BlockSystem::assemble_and_factorise(StepStatistics& stats) {
 }
 
 void BlockSystem::factorise_converged_response(StepStatistics& stats) {
+  if (!settings_.converged_response()) throw std::logic_error("factorise_converged_response: the option is off");
   const double stiffening = settings_.converged_response_stiffening;
   auto start = Clock::now();
   stiffened_ = stiffness_;
-  if (settings_.augmented_lagrangian)
-    for (const auto& c : contacts_.all()) {
-      if (c.state == ContactState::open || !iterated(c)) continue;
-      const ContactTerms terms = contact_terms(c);  // the normal springs, and the shear ones when locked
-      for (int k = 0; k < 4; ++k) {
-        if (!terms.present[k]) continue;
+  for (const auto& c : contacts_.all()) {
+    if (c.state == ContactState::open || !iterated(c)) continue;
+    const ContactTerms terms = contact_terms(c);  // the normal springs, and the shear ones when locked
+    for (int k = 0; k < 4; ++k)
+      if (terms.present[k])
         add_spring_term(stiffened_, c.springs[k / 2].slot, terms.term[k], (stiffening - 1.0) * terms.term[k].stiffness);
-      }
-    }
+  }
   stats.seconds_assembly += seconds_since(start);
   start = Clock::now();
   stiffened_solver_.factorize(stiffened_.matrix());
