@@ -36,21 +36,36 @@ void FlowNetwork::add_injection(const Injection& injection) {
   if (injection.point < 0 || injection.point >= n_points())
     throw std::invalid_argument("FlowNetwork: injection at an invalid point");
   if (vent(injection.point)) throw std::invalid_argument("FlowNetwork: an injection point cannot be a vent");
+  if (!(injection.system_compliance_m2_Pa >= 0.0))
+    throw std::invalid_argument("FlowNetwork: negative compliance of an injection system");
+  // The system starts at zero pressure with its lines full: what it holds is counted
+  // from there, so a fluid already under pressure at its point would need a share of
+  // its own (not modelled; refused).
+  if (injection.system_compliance_m2_Pa > 0.0 && reached_[injection.point] && point_state_[injection.point] > 0.0)
+    throw std::invalid_argument("FlowNetwork: an injection system with a compliance must start at zero pressure");
   injections_.push_back(injection);
 }
 
 void FlowNetwork::fill_initially(int f, double width_m, double pressure_Pa) {
-  const double w = std::max(width_m, settings_.min_width_main_m);
+  // At least the minimum width in all, w0 included (a closed fracture with w0 holds w0).
+  const double w0 = fractures_[f].hydraulic_width_m;
+  const double w = std::max(width_m + w0, settings_.min_width_main_m) - w0;
   fill_initially(f, {w, w}, pressure_Pa);
 }
 
 void FlowNetwork::fill_initially(int f, const std::array<double, 2>& end_width_m, double pressure_Pa) {
   if (!(pressure_Pa >= 0.0)) throw std::invalid_argument("FlowNetwork::fill_initially: negative pressure");
+  for (const auto& inj : injections_)
+    if (pressure_Pa > 0.0 && inj.system_compliance_m2_Pa > 0.0 &&
+        (inj.point == fractures_[f].point_p || inj.point == fractures_[f].point_q))
+      throw std::invalid_argument("FlowNetwork: an injection system with a compliance must start at zero pressure");
   wetted_[f] = 1;
   arrival_time_[f] = time_s_;
   const int points[2] = {fractures_[f].point_p, fractures_[f].point_q};
   for (int end = 0; end < 2; ++end) {
-    const double w = std::max(end_width_m[end], settings_.min_width_tip_m);
+    // The fluid fills the hydraulic width, w0 included (the flow's aperture is the
+    // opening plus w0), so that a filled fracture with w0 starts full.
+    const double w = std::max(end_width_m[end] + fractures_[f].hydraulic_width_m, settings_.min_width_tip_m);
     aperture_[2 * f + end] = w;
     const double mass = fluid_.density(pressure_Pa) * 0.5 * fractures_[f].length_m * w;
     point_mass_[points[end]] += mass;
@@ -187,6 +202,13 @@ void FlowNetwork::set_trial_fracture_data() {
   trial_.hydraulic_width_m.setZero(2 * nf);
   trial_.held_open_floor_m = trial_.floor_m;
   trial_.vent.assign(trial_nodes_.size(), 0);
+  trial_.system_compliance_m2_Pa.resize(0);
+  for (const auto& inj : injections_) {
+    const int i = node_of_point_[inj.point];
+    if (i < 0 || inj.system_compliance_m2_Pa == 0.0) continue;
+    if (trial_.system_compliance_m2_Pa.size() == 0) trial_.system_compliance_m2_Pa.setZero(trial_nodes_.size());
+    trial_.system_compliance_m2_Pa[i] += inj.system_compliance_m2_Pa;
+  }
   if (!vent_point_.empty())
     for (std::size_t i = 0; i < trial_nodes_.size(); ++i) trial_.vent[i] = vent_point_[trial_nodes_[i]];
   for (int k = 0; k < nf; ++k) {
@@ -297,6 +319,10 @@ double FlowNetwork::volume_stored_mass() const {
     const double density = state >= 0.0 ? fluid_.density(state) : fluid_.density(0.0) * (1.0 + state);
     m += density * volume[point];
   }
+  // What the injection systems hold under pressure: at the pressure the solve used
+  // (rounded near zero, MassBalance::kPressureRounding), not the fill state.
+  for (const auto& inj : injections_)
+    if (reached_[inj.point]) m += fluid_.density(0.0) * inj.system_compliance_m2_Pa * point_pressure_[inj.point];
   return m;
 }
 

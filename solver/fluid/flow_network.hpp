@@ -82,6 +82,12 @@ struct Injection {
   double start_time_s = 0.0;
   /// Injection stops once this mass has gone in (seed 5.5: 60 kg per metre).
   double mass_limit_kg = std::numeric_limits<double>::infinity();
+  /// Compliance of the injection system (pump, lines and borehole) upstream of the
+  /// fracture: at injection pressure p it holds rho(0) C p more fluid than at zero
+  /// pressure, taken from the pump's flow while the pressure rises and given back as it
+  /// falls. 0: a stiff system, all of the pump's flow enters the fracture [m^2/Pa, per
+  /// metre of out-of-plane thickness].
+  double system_compliance_m2_Pa = 0.0;
 
   /// Mass per metre injected from time 0 to t: the rate from start_time on, up to the limit.
   double mass_injected_by(double t_s) const {
@@ -95,8 +101,9 @@ class FlowNetwork {
   FlowNetwork(int n_points, std::vector<Fracture> fractures, FluidProperties fluid, FlowSettings settings);
 
   void add_injection(const Injection& injection);
-  /// Before the first step: the fracture starts wetted, open by `width_m` (at least
-  /// the minimum width) and full of fluid at `pressure_Pa` (>= 0; mass rho(p) L w).
+  /// Before the first step: the fracture starts wetted, open by `width_m` and full of
+  /// fluid at `pressure_Pa` (>= 0; mass rho(p) L w), its hydraulic width w0 (Fracture)
+  /// full as well: w = width + w0, at least the minimum width.
   /// A point shared by fractures filled at different pressures takes the last one.
   void fill_initially(int fracture, double width_m, double pressure_Pa = 0.0);
   /// The same with an opening per end (point p, point q), each at least the minimum

@@ -82,7 +82,7 @@ void MassBalance::evaluate_storage(const Eigen::VectorXd& x, Evaluation& out) co
   out.vented.setZero(n);
   out.residual.resize(n);
   for (int i = 0; i < n; ++i) {
-    out.storage[i] = fill_density(x[i], i) * out.volume[i];
+    out.storage[i] = fill_density(x[i], i) * out.volume[i] + system_storage_slope(i) * out.pressure[i];
     if (is_vent(i) && x[i] > 0.0) out.vented[i] = fluid_.density(0.0) * out.volume[i] * x[i] / network_.fill_scale_Pa[i];
     out.residual[i] = out.storage[i] - network_.old_mass_kg[i] +
                       network_.homotopy * (wetted_fraction(x[i], i) * out.density[i] * network_.leak_volume_m3[i] -
@@ -111,6 +111,7 @@ void MassBalance::evaluate_jacobian(const Eigen::VectorXd& x, Evaluation& out) c
   const int nf = network_.n_fractures();
   const Eigen::VectorXd& leak_volume = network_.leak_volume_m3;
   out.conductance = fluid_.density_derivative() * out.volume;
+  for (int i = 0; i < n; ++i) out.conductance[i] += system_storage_slope(i);
   for (int k = 0; k < nf; ++k) {
     out.conductance[network_.node_a[k]] += network_.flow_dt() * out.eta[k];
     out.conductance[network_.node_b[k]] += network_.flow_dt() * out.eta[k];
@@ -140,7 +141,8 @@ void MassBalance::evaluate_jacobian(const Eigen::VectorXd& x, Evaluation& out) c
   out.coupling.setFromTriplets(coupling.begin(), coupling.end());
   out.local = out.local * out.pressure_slope.asDiagonal();
   for (int i = 0; i < n; ++i) {
-    double diagonal = fill_density_slope(x[i], i) * out.volume[i];  // storage
+    double diagonal = fill_density_slope(x[i], i) * out.volume[i] +  // storage
+                      system_storage_slope(i) * out.pressure_slope[i];  // and the injection system's
     if (x[i] < 0.0)
       diagonal += network_.homotopy * out.density[i] * leak_volume[i] / network_.fill_scale_Pa[i];  // wetted part
     out.local.coeffRef(i, i) += diagonal;

@@ -9,6 +9,9 @@
 //
 //   R_i = M_i(t+dt) - M_i(t) + lambda (f_i rho_i Vleak_i - I_i) + lambda dt sum_j eta_ij (p_i - p_j)
 //
+// where M_i = rho V_i, plus rho(0) C_i p_i at a node fed by an injection system of
+// compliance C_i (the pump, lines and borehole upstream of the fracture).
+//
 // with f_i the wetted fraction of the node's walls and lambda the homotopy scale (1 but
 // in continuation). The unknown y of a node is its fill state: the pressure max(y, 0)
 // of a full node for y >= 0, a zero-pressure node filled to 1 + y / P for y < 0. The
@@ -59,6 +62,9 @@ struct TrialNetwork {
   Eigen::VectorXd leak_volume_m3;  ///< Carter leak-off of its walls over the step, if all wetted
   Eigen::VectorXd fill_scale_Pa;   ///< P of the fill state (only shapes Newton's path)
   std::vector<char> vent;          ///< vent node: held at zero pressure, its excess leaves
+  /// Compliance C of an injection system feeding the node (Injection): it stores
+  /// rho(0) C p besides the node's fractures [m^2/Pa]. Empty: none anywhere.
+  Eigen::VectorXd system_compliance_m2_Pa;
   // Per trial end.
   Eigen::VectorXd floor_m;            ///< lower bound of the aperture
   Eigen::VectorXd hydraulic_width_m;  ///< w0 of its fracture
@@ -115,6 +121,11 @@ class MassBalance {
   /// Round-off of the step's mass balance [kg]: 64 eps times its largest terms.
   double residual_round_off() const;
   bool is_vent(int node) const { return !network_.vent.empty() && network_.vent[node] != 0; }
+  /// rho(0) C of the node's injection system [kg/Pa] (0 without one).
+  double system_storage_slope(int node) const {
+    return network_.system_compliance_m2_Pa.size() == 0 ? 0.0
+                                                         : fluid_.density(0.0) * network_.system_compliance_m2_Pa[node];
+  }
 
  private:
   /// Pieces of evaluate, in its order: pressure of the fill state, floored apertures,

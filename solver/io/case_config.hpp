@@ -197,6 +197,9 @@ struct InjectionConfig {
   /// Injection stops once this mass per metre has gone in (seed 5.5: 60 kg); the run goes
   /// on shut in. Absent: no limit.
   std::optional<double> mass_limit_kg;
+  /// Compliance of the pump, lines and borehole upstream of the fracture (fluid::Injection)
+  /// [m^2/Pa per metre of out-of-plane thickness]; 0: stiff.
+  double system_compliance_m2_Pa = 0.0;
   int line = 0;
 };
 

@@ -348,7 +348,13 @@ const Table<InjectionConfig>& injection_table() {
        optional_number({"mass_limit", "kg", "§5.5: injection stopped after 60 kg",
                         "injection stops once this mass per metre of out-of-plane thickness has gone in; "
                         "the run goes on shut in to time.end_time"},
-                       &InjectionConfig::mass_limit_kg, positive_up_to(1e12), "no limit")}};
+                       &InjectionConfig::mass_limit_kg, positive_up_to(1e12), "no limit"),
+       number({"system_compliance", "m^2/Pa", "none (HFDDA); §3.3 models the pump's delay by a late start",
+               "compliance of the injection system (pump, lines, borehole) per metre of out-of-plane thickness: "
+               "at injection pressure p it holds rho(0) C p more fluid than at zero pressure, taken from the "
+               "pump's flow as the pressure rises and given back as it falls; 0: all of the flow enters the "
+               "fracture. Needs the fluid at its point to start at zero pressure"},
+              &InjectionConfig::system_compliance_m2_Pa, zero_to(1e-3))}};
   return table;
 }
 

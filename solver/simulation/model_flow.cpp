@@ -1,5 +1,6 @@
 #include "simulation/model_flow.hpp"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <memory>
@@ -71,8 +72,20 @@ InitialFill build_flow_network(Model& model, const io::CaseConfig& c) {
   }
   for (std::size_t i = 0; i < c.injections.size(); ++i) {
     const int point = injection_point(m, c, i, fill.filled_joints_at);
-    model.flow->add_injection({point, c.injections[i].mass_rate_kg_s, c.injections[i].start_time_s,
-                               c.injections[i].mass_limit_kg.value_or(std::numeric_limits<double>::infinity())});
+    fluid::Injection injection{point, c.injections[i].mass_rate_kg_s, c.injections[i].start_time_s,
+                               c.injections[i].mass_limit_kg.value_or(std::numeric_limits<double>::infinity()),
+                               c.injections[i].system_compliance_m2_Pa};
+    const bool pressurised_at_start =
+        model.flow->pressure(point) > 0.0 ||
+        std::any_of(fill.opened_by_fluid.begin(), fill.opened_by_fluid.end(), [&](const auto& opened) {
+          return opened.pressure_Pa > 0.0 &&
+                 (m.joints[opened.joint].point_p == point || m.joints[opened.joint].point_q == point);
+        });
+    if (injection.system_compliance_m2_Pa > 0.0 && pressurised_at_start)
+      throw ModelError("injection '" + c.injections[i].name + "' (line " + std::to_string(c.injections[i].line) +
+                       "): system_compliance needs the fluid at its point to start at zero pressure "
+                       "(its fracture has initial_pressure > 0)");
+    model.flow->add_injection(injection);
     model.injection_points.push_back(point);
   }
   if (c.fluid->edge == "vented") {

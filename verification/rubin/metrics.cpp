@@ -92,8 +92,10 @@ Metrics variant_metrics(const VariantRun& r) {
   const std::vector<Series> s = model_series(rec);
   m.numbers["half_length_at_10s_m"] = interpolate(s[1], 10.0);
   m.numbers["half_length_at_11p9s_m"] = interpolate(s[1], 11.9);
-  // Growth once fluid enters (t = start): what injection did, not the notch fill.
-  m.numbers["half_length_growth_after_injection_m"] = last_half_length - interpolate(s[1], start);
+  // Growth once fluid enters (t = start): what injection did, not the notch fill. A run
+  // whose injection starts with it (as_run.yaml) counts from its first step.
+  const double half_length_at_start = start < s[1].t.front() ? s[1].v.front() : interpolate(s[1], start);
+  m.numbers["half_length_growth_after_injection_m"] = last_half_length - half_length_at_start;
   m.numbers["aperture_28p5mm_at_11p9s_m"] = interpolate(s[2], 11.9);
   for (const auto& [name, value] : m.numbers) m.json[name] = finite_or_null(value);
   m.files["series_" + r.variant->name + ".csv"] = series_csv(rec);
@@ -127,6 +129,10 @@ void study_metrics(StudyOutcome& s) {
       const double e = mean_relative_error(ours[i], measured[i], kQuantities[i].t_min_s);
       v.metrics.numbers[std::string("error_") + kQuantities[i].key] = e;
       v.metrics.json["error"][kQuantities[i].key] = finite_or_null(e);
+      // Against the peer's error on the same series by the same measure (< 1: better).
+      const double peer = mean_relative_error(peer_series[i], measured[i], kQuantities[i].t_min_s);
+      v.metrics.numbers[std::string("error_over_peer_") + kQuantities[i].key] = e / peer;
+      v.metrics.json["error_over_peer"][kQuantities[i].key] = finite_or_null(e / peer);
       // The same error over the measured points the run reached (the quick tier's 20 s).
       const double w = mean_relative_error(ours[i], measured[i], kQuantities[i].t_min_s, t_end);
       v.metrics.numbers[std::string("error_to_end_") + kQuantities[i].key] = w;
