@@ -42,8 +42,11 @@ StepContext make_step_context(const Model& model, int step, double time_s, const
     if (!flow->wetted(j)) continue;
     ++c.wetted_joints;
     for (int end = 0; end < 2; ++end) {
-      if (system.joint_end_state(j, end) != dda::ContactState::open) continue;
       const Vec2 r = m.points[end == 0 ? m.joints[j].point_p : m.joints[j].point_q] - origin;
+      const bool open = system.joint_end_state(j, end) == dda::ContactState::open;
+      if (open || !system.contacts()[system.joint_contacts(j)[end]].bonded)
+        c.fracture_xmin_m = std::min(c.fracture_xmin_m, r.x()), c.fracture_xmax_m = std::max(c.fracture_xmax_m, r.x());
+      if (!open) continue;
       c.open_xmin_m = std::min(c.open_xmin_m, r.x()), c.open_xmax_m = std::max(c.open_xmax_m, r.x());
       c.open_ymin_m = std::min(c.open_ymin_m, r.y()), c.open_ymax_m = std::max(c.open_ymax_m, r.y());
     }
@@ -145,6 +148,12 @@ std::vector<OutputColumn> make_fixed_columns() {
       {"open_xmax_m", "m", "largest x" + extent, [](const StepContext& c) { return c.open_xmax_m; }},
       {"open_ymin_m", "m", "smallest y" + extent, [](const StepContext& c) { return c.open_ymin_m; }},
       {"open_ymax_m", "m", "largest y" + extent, [](const StepContext& c) { return c.open_ymax_m; }},
+      {"fracture_xmin_m", "m",
+       "smallest x of the ends of fluid-filled joints that are open or no longer bonded there, relative to the "
+       "injection point (a joint broken whole reaches its tip even where its faces touch there)",
+       [](const StepContext& c) { return c.fracture_xmin_m; }},
+      {"fracture_xmax_m", "m", "largest x of the same ends as fracture_xmin_m",
+       [](const StepContext& c) { return c.fracture_xmax_m; }},
       {"opened_length_rock_m", "m", "length of rock joints (not natural) with an open end",
        [](const StepContext& c) { return c.opened_m[0]; }},
       {"opened_length_natural_m", "m", "length of natural-fracture joints with an open end",

@@ -37,6 +37,10 @@ struct StepContext {
   int wetted_joints = 0;               ///< 0 without a flow network
   int inlet_point = -1;                ///< mesh point of the first injection, -1 if none
   double open_xmin_m = 0.0, open_xmax_m = 0.0, open_ymin_m = 0.0, open_ymax_m = 0.0;
+  /// x-extent of the ends of fluid-filled joints that are open or no longer bonded there:
+  /// the fracture reaches the tip of a joint broken whole even where its faces touch at
+  /// the tip, which the open ends alone miss by one joint from step to step [m].
+  double fracture_xmin_m = 0.0, fracture_xmax_m = 0.0;
   /// Lengths of joints per kind (0 rock, 1 natural: mesh::JointProperties::natural) [m]:
   /// with an open end, holding fluid (invaded), with a sliding end.
   double opened_m[2] = {0.0, 0.0}, invaded_m[2] = {0.0, 0.0}, slipped_m[2] = {0.0, 0.0};

@@ -34,7 +34,7 @@ using rubin::Series;
 std::vector<Series> model_series(const simulation::RunRecord& r) {
   std::vector<Series> out(5);
   const std::vector<double> t = r.series("time_s");
-  const std::vector<double> xmin = r.series("open_xmin_m"), xmax = r.series("open_xmax_m");
+  const std::vector<double> xmin = r.series("fracture_xmin_m"), xmax = r.series("fracture_xmax_m");
   const std::vector<double> p_well = r.series("probe_wellbore_pressure_Pa");
   const std::vector<double> w_lvdt = r.series("probe_lvdt_aperture_m");
   const std::vector<double> p15 = r.series("probe_gauge_b_pressure_Pa");
@@ -76,7 +76,7 @@ Metrics variant_metrics(const VariantRun& r) {
     max_balance = std::max(max_balance, rec.value(row, "mass_balance_error"));
     if (t <= start) injected_before_start = std::max(injected_before_start, injected);
     else max_rate_error = std::max(max_rate_error, std::abs(injected / (rate * (t - start)) - 1.0));
-    const double l = 0.5 * (rec.value(row, "open_xmax_m") - rec.value(row, "open_xmin_m"));
+    const double l = 0.5 * (rec.value(row, "fracture_xmax_m") - rec.value(row, "fracture_xmin_m"));
     if (row > 0) min_growth = std::min(min_growth, l - last_half_length);
     last_half_length = l;
   }
