@@ -24,6 +24,12 @@ STYLE = {0.5: ("o", "tab:blue"), 1.0: ("s", "tab:red")}
 
 def plot_toughness(ax, rows):
     """Failure stress with the toughness criterion against K_IIC / sqrt(pi a)."""
+    # The seed's one-diagonal mesh (variants *_two, reported) in grey crosses.
+    one_diagonal = np.char.endswith(rows["variant"].astype(str), "_two")
+    if one_diagonal.any():
+        ax.plot(rows["a_m"][one_diagonal], rows["failure_stress_Pa"][one_diagonal] / 1e6, "x", color="0.5", ms=7,
+                label="DDA, one diagonal per cell (reported)")
+    rows = rows[~one_diagonal]
     delaunay = rows["delaunay_mesh"] if "delaunay_mesh" in rows.dtype.names else np.zeros(len(rows))
     groups = sorted(set((float(k), float(length), float(d)) for k, length, d in
                         zip(rows["K_IIC_Pa_sqrt_m"], rows["joint_length_m"], delaunay) if np.isfinite(length)))
