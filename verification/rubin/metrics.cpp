@@ -116,9 +116,10 @@ void study_metrics(StudyOutcome& s) {
   // The peer, scored by the same code: reported for comparison (its recomputation is a
   // unit test of this metric, verification/tests/test_rubin_metric.cpp, not a check).
   const std::vector<Series> peer_series = rubin::peer_series(peer_file);
+  std::vector<double> peer_error(measured.size());
   for (std::size_t i = 0; i < measured.size(); ++i) {
-    const double e = mean_relative_error(peer_series[i], measured[i], kQuantities[i].t_min_s);
-    s.metrics.json["peer_error"][kQuantities[i].key] = finite_or_null(e);
+    peer_error[i] = mean_relative_error(peer_series[i], measured[i], kQuantities[i].t_min_s);
+    s.metrics.json["peer_error"][kQuantities[i].key] = finite_or_null(peer_error[i]);
   }
 
   for (VariantOutcome& v : s.variants) {
@@ -130,9 +131,8 @@ void study_metrics(StudyOutcome& s) {
       v.metrics.numbers[std::string("error_") + kQuantities[i].key] = e;
       v.metrics.json["error"][kQuantities[i].key] = finite_or_null(e);
       // Against the peer's error on the same series by the same measure (< 1: better).
-      const double peer = mean_relative_error(peer_series[i], measured[i], kQuantities[i].t_min_s);
-      v.metrics.numbers[std::string("error_over_peer_") + kQuantities[i].key] = e / peer;
-      v.metrics.json["error_over_peer"][kQuantities[i].key] = finite_or_null(e / peer);
+      v.metrics.numbers[std::string("error_over_peer_") + kQuantities[i].key] = e / peer_error[i];
+      v.metrics.json["error_over_peer"][kQuantities[i].key] = finite_or_null(e / peer_error[i]);
       // The same error over the measured points the run reached (the quick tier's 20 s).
       const double w = mean_relative_error(ours[i], measured[i], kQuantities[i].t_min_s, t_end);
       v.metrics.numbers[std::string("error_to_end_") + kQuantities[i].key] = w;
