@@ -169,6 +169,13 @@ Eigen::VectorXd CoupledStep::solve_contacts(StepStatistics& stats) {
 
 int CoupledStep::update_contact_states(const Eigen::VectorXd& d, StepStatistics& stats) {
   const dda::OpenCloseTrial trial = mechanics_.trial_contacts(d, stats);
+  if (rules_.failures_on_settled_contacts) {
+    // Bonds are judged only on a state whose contacts no longer change: a failure decided
+    // while another contact is still, say, locked with a shear force beyond friction
+    // would be decided on a state that is not a solution (docs/design_notes.md section 34).
+    const int applied = mechanics_.apply_state_changes(d, trial.changes, stats);
+    if (applied > 0) return applied;
+  }
   const auto failures = rules_.criterion == fracture::FailureCriterion::strength
                             ? fracture::failing_bonds(overloaded_bonds(trial), pressurised_points(), rules_)
                             : toughness_failures(trial, d);

@@ -47,6 +47,9 @@ struct FractureRules {
   bool shear_failure_of_intact_joints = false; ///< Mohr-Coulomb failure of intact bonds
   /// Seed 2.3 (i): a bond may fail only next to an open contact and a pressurised point.
   bool failure_needs_open_neighbour_and_fluid = true;
+  /// Bonds fail only in an open-close round in which no contact changes state (not in
+  /// the seed, which checks both in one round): the failure is judged on a settled state.
+  bool failures_on_settled_contacts = false;
   /// strength: the rules above everywhere (the seed). energy_release_rate: intact joints
   /// at a crack tip fail by the toughness criterion (toughness_criterion.hpp), the
   /// bonds elsewhere by the rules above.

@@ -305,6 +305,9 @@ struct NumericsConfig {
   /// A contact whose bond broke in this step may be re-locked by a slip reversal within
   /// the step (dda::MechanicsSettings::relock_in_failure_step).
   bool relock_in_failure_step = true;
+  /// Bonds fail only in a round in which no contact changes state
+  /// (fracture::FractureRules::failures_on_settled_contacts).
+  bool failures_on_settled_contacts = false;
   double tie_tolerance = 1.0e-3;        ///< seed 2.3 (iii): failures within 0.1 % split
   bool shear_failure_of_intact_joints = false;  ///< false: seed 2.3 (ii), tension first
   // Coupled hydro-mechanical step (seed 2.1, 2.4; docs/formulation.md section 4).

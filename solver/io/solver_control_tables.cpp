@@ -107,6 +107,11 @@ const Table<NumericsConfig>& numerics_table() {
                 "measured from the failure, and a contact re-locked there holds a shear force outside "
                 "friction (docs/design_notes.md section 29)"},
                &NumericsConfig::relock_in_failure_step),
+       boolean({"failures_on_settled_contacts", "", "none (HFDDA): the seed checks contact states and bond failures in the same round (2.3)",
+                "true: a bond may fail only in an open-close round in which no contact changes state, so "
+                "that every failure is judged on a state whose contacts are settled (docs/design_notes.md "
+                "section 34); false: the seed's rounds, failures and contact changes together"},
+               &NumericsConfig::failures_on_settled_contacts),
        number({"tie_tolerance", "-", "§2.3 (iii): 0.1 %",
                "relative difference of normal stress below which simultaneous tensile "
                "failures both break"},

@@ -480,6 +480,7 @@ fracture::FractureRules fracture_rules(const io::CaseConfig& c) {
   r.tie_tolerance = c.numerics.tie_tolerance;
   r.shear_failure_of_intact_joints = c.numerics.shear_failure_of_intact_joints;
   r.failure_needs_open_neighbour_and_fluid = !c.load_ramp.has_value();
+  r.failures_on_settled_contacts = c.numerics.failures_on_settled_contacts;
   if (c.fracture.criterion == io::FailureCriterionKind::energy_release_rate) {
     r.criterion = fracture::FailureCriterion::energy_release_rate;
     r.toughness.mode1_Pa_sqrt_m = *c.fracture.fracture_toughness_Pa_sqrt_m;
