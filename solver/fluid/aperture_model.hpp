@@ -12,6 +12,8 @@
 // S itself may be a dense matrix (DenseApertureModel) or an operator whose products
 // cost one solve with the factorised block stiffness (coupling/aperture_operator.hpp).
 
+#include <vector>
+
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
@@ -40,7 +42,10 @@ class ApertureModel {
   virtual long inexact_solves() const { return 0; }
 };
 
-/// S held as a dense matrix; J formed densely and factorised by LU with partial pivoting.
+/// S held as a dense matrix; J formed densely and factorised by LU with partial pivoting:
+/// Eigen's below kLapackLuMinNodes nodes, LAPACK's (dgetrf, the BLAS kernels of the
+/// processor) from there on, 2.6 times faster at 256-1,177 nodes (docs/design_notes.md
+/// section 19).
 class DenseApertureModel final : public ApertureModel {
  public:
   explicit DenseApertureModel(const Eigen::MatrixXd& sensitivity_m_Pa) : s_(sensitivity_m_Pa) {}
@@ -54,8 +59,17 @@ class DenseApertureModel final : public ApertureModel {
 
  private:
   const Eigen::MatrixXd& s_;
-  Eigen::MatrixXd jacobian_;
+  Eigen::MatrixXd jacobian_;  ///< J, or its LAPACK LU factors in place
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  bool lapack_ = false;       ///< the factors are LAPACK's (jacobian_, pivots_)
+  std::vector<int> pivots_;
+  int lapack_info_ = 0;       ///< dgetrf's info: > 0, an exactly zero pivot
 };
+
+/// Wetted nodes from which DenseApertureModel factorises J with LAPACK. Eigen's LU is
+/// faster at 64 nodes and LAPACK's 2-2.9 times faster from 128; the switch is set at 256,
+/// above every network of the verification suite (at most 195 nodes), whose results are
+/// thereby those of Eigen's LU to the last digit.
+inline constexpr int kLapackLuMinNodes = 256;
 
 }  // namespace hfdda::fluid
