@@ -179,7 +179,11 @@ int CoupledStep::update_contact_states(const Eigen::VectorXd& d, StepStatistics&
   const auto failures = rules_.criterion == fracture::FailureCriterion::strength
                             ? fracture::failing_bonds(overloaded_bonds(trial), pressurised_points(), rules_)
                             : toughness_failures(trial, d);
-  return mechanics_.apply_state_changes(d, merge_failures(trial.changes, failures), stats);
+  // Settled: this round's contact changes were offered above and none was applied (those
+  // left are held by the cycle rule, already counted); only the failures remain.
+  const std::vector<dda::ContactChange> none;
+  const auto& open_close = rules_.failures_on_settled_contacts ? none : trial.changes;
+  return mechanics_.apply_state_changes(d, merge_failures(open_close, failures), stats);
 }
 
 std::vector<fracture::BondFailure> CoupledStep::toughness_failures(const dda::OpenCloseTrial& trial,
