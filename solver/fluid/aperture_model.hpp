@@ -44,7 +44,7 @@ class ApertureModel {
 
 /// S held as a dense matrix; J formed densely and factorised by LU with partial pivoting:
 /// Eigen's below kLapackLuMinNodes nodes, LAPACK's (dgetrf, the BLAS kernels of the
-/// processor) from there on, 2.6 times faster at 256-1,177 nodes (docs/design_notes.md
+/// processor) from there on, 2.6-3.2 times faster at 256-1,177 nodes (docs/design_notes.md
 /// section 19).
 class DenseApertureModel final : public ApertureModel {
  public:
@@ -66,8 +66,8 @@ class DenseApertureModel final : public ApertureModel {
   int lapack_info_ = 0;       ///< dgetrf's info: > 0, an exactly zero pivot
 };
 
-/// Wetted nodes from which DenseApertureModel factorises J with LAPACK. Eigen's LU is
-/// faster at 64 nodes and LAPACK's 2-2.9 times faster from 128; the switch is set at 256,
+/// Wetted nodes from which DenseApertureModel factorises J with LAPACK. LAPACK's LU is
+/// 1.1 times faster at 64 nodes and 1.8-3.2 times from 128; the switch is set at 256,
 /// above every network of the verification suite (at most 195 nodes), whose results are
 /// thereby those of Eigen's LU to the last digit.
 inline constexpr int kLapackLuMinNodes = 256;
