@@ -35,6 +35,12 @@ FIGURES = {
         ("kgd_toughness_energy_t5.png",
          "KGD toughness storage, toughness criterion at crack tips, K_IC = 4.43 and 6.27 MPa m^0.5",
          [("l05_t5_energy", "o"), ("l1_t5_energy", "s")]),
+        ("kgd_toughness_energy_large_t1.png",
+         "Toughness criterion, 800 m x 720 m plate (K-vertex's), K_IC = 0.886 and 1.253 MPa m^0.5",
+         [("l05_t1_energy_large", "o"), ("l1_k0886_energy_large", "x"), ("l1_t1_energy_large", "s")]),
+        ("kgd_toughness_energy_large_t5.png",
+         "Toughness criterion, 800 m x 720 m plate (K-vertex's), K_IC = 4.43 and 6.27 MPa m^0.5",
+         [("l05_t5_energy_large", "o"), ("l1_t5_energy_large", "s")]),
     ],
     "quick": [
         ("kgd_toughness_quick.png", "KGD toughness storage, quick tier: L = 1 m, T0 = 1 MPa",
