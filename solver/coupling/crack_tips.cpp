@@ -31,9 +31,10 @@ double along(const mesh::Mesh& m, int j, const Vec2& e) {
 }
 
 /// The crack-closure data of the tip at `point` with joint `reference` ahead and joint
-/// `behind` behind it, at the contact forces `tractions` and step displacement `d`.
+/// `behind` behind it (and `second` behind that, -1: none), at the contact forces
+/// `tractions` and step displacement `d`.
 fracture::CrackTip closure_data(const dda::BlockSystem& system, const std::vector<dda::ContactTraction>& tractions,
-                                const Eigen::VectorXd& d, int reference, int behind, int point) {
+                                const Eigen::VectorXd& d, int reference, int behind, int second, int point) {
   const mesh::Mesh& m = system.mesh();
   const auto& contacts = system.contacts();
   fracture::CrackTip tip;
@@ -66,6 +67,14 @@ fracture::CrackTip closure_data(const dda::BlockSystem& system, const std::vecto
   tip.near_slip_m = near.dot(e);
   tip.far_opening_m = far.dot(n);
   tip.far_slip_m = far.dot(e);
+  if (second >= 0) {
+    const int joined = behind_tip_end == 0 ? m.joints[behind].point_q : m.joints[behind].point_p;
+    const Vec2 far2 = b_side(m, second, n) * system.joint_end_separation(second, 1 - end_at(m, second, joined), d);
+    tip.second_opening_m = far2.dot(n);
+    tip.second_slip_m = far2.dot(e);
+    tip.second_distance_m =
+        tip.behind_length_m + (m.points[m.joints[second].point_q] - m.points[m.joints[second].point_p]).norm();
+  }
   const dda::Material& rock = system.materials()[system.block_material()[m.joints[reference].block_a]];
   tip.plane_strain_modulus_Pa = fracture::plane_strain_modulus_Pa(rock.youngs_modulus_Pa, rock.poissons_ratio);
   return tip;
@@ -93,6 +102,25 @@ std::vector<dda::ContactTraction> CrackTips::committed_tractions(const dda::Bloc
       tractions[ci].shear_N = shear_N;
     }
   return tractions;
+}
+
+int CrackTips::continuing_broken_joint(const dda::BlockSystem& system, int behind, int tip_point) const {
+  const mesh::Mesh& m = system.mesh();
+  const int joined = m.joints[behind].point_p == tip_point ? m.joints[behind].point_q : m.joints[behind].point_p;
+  const Vec2 away = (m.points[joined] - m.points[tip_point]).normalized();
+  // Within about 18 degrees of a straight line: the extrapolation assumes one crack.
+  constexpr double kMinCosine = 0.95;
+  int best = -1;
+  double best_cosine = kMinCosine;
+  for (int k : std::span(joints_).subspan(joint_offset_[joined], joint_offset_[joined + 1] - joint_offset_[joined])) {
+    if (k == behind) continue;
+    bool broken = true;
+    for (int ci : system.joint_contacts(k)) broken = broken && !system.contacts()[ci].bonded;
+    if (!broken) continue;
+    const double cosine = direction_from(m, k, joined).dot(away);
+    if (cosine >= best_cosine) best = k, best_cosine = cosine;
+  }
+  return best;
 }
 
 void CrackTips::find(const dda::BlockSystem& system, const std::vector<dda::ContactTraction>& tractions,
@@ -137,12 +165,13 @@ void CrackTips::find(const dda::BlockSystem& system, const std::vector<dda::Cont
       if (m.joints[a].properties.breakable) candidates.push_back(a), candidate_directions.push_back(da);
     }
     if (reference < 0) continue;  // the inside of a crack, or its faces: no tip here
+    const int second = continuing_broken_joint(system, behind, point);
     for (int a : at_point)
       if (bonded_at(a, point))
         for (int end_contact : system.joint_contacts(a)) governed[end_contact] = 1;
 
     CrackTipState state;
-    state.tip = closure_data(system, tractions, d, reference, behind, point);
+    state.tip = closure_data(system, tractions, d, reference, behind, second, point);
     state.direction = direction_from(m, reference, point);
     if (!candidates.empty()) {
       const fracture::StressIntensities k = fracture::stress_intensities(state.tip);

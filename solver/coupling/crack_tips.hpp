@@ -46,6 +46,10 @@ class CrackTips {
   static std::vector<dda::ContactTraction> committed_tractions(const dda::BlockSystem& system);
 
  private:
+  /// The broken joint (both contacts unbonded) at the far end of `behind` that continues
+  /// it away from `tip_point` within about 18 degrees; -1 if there is none.
+  int continuing_broken_joint(const dda::BlockSystem& system, int behind, int tip_point) const;
+
   std::vector<int> joint_offset_;  // joints at point p: joints_[joint_offset_[p] .. joint_offset_[p + 1])
   std::vector<int> joints_;
 };

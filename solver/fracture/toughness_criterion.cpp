@@ -13,7 +13,7 @@ double plane_strain_modulus_Pa(double youngs_modulus_Pa, double poissons_ratio) 
   return youngs_modulus_Pa / (1.0 - poissons_ratio * poissons_ratio);
 }
 
-EnergyReleaseRates vcct_energy_release_rates(const CrackTip& t) {
+EnergyReleaseRates vcct_energy_release_rates(const CrackTip& t, CrackClosure closure) {
   if (!(t.length_m > 0.0) || !(t.behind_length_m > 0.0))
     throw std::invalid_argument("vcct_energy_release_rates: joint lengths must be > 0");
   // The opening at da behind the tip from the one at L_b: sqrt(r) near a tip.
@@ -23,7 +23,18 @@ EnergyReleaseRates vcct_energy_release_rates(const CrackTip& t) {
   const double closure_n = opening_work(t.tip_normal_N, t.far_opening_m * to_da) + opening_work(t.far_normal_N, t.near_opening_m);
   const double closure_s = t.tip_shear_N * t.far_slip_m * to_da + t.far_shear_N * t.near_slip_m;
   const double scale = kLumpedClosureFactor / (2.0 * t.length_m);
-  return {scale * closure_n, scale * std::abs(closure_s)};
+  const EnergyReleaseRates one_joint{scale * closure_n, scale * std::abs(closure_s)};
+  if (closure == CrackClosure::one_joint || !(t.second_distance_m > 0.0)) return one_joint;
+  // A closure of 2 da: the joint ahead's two forces at the tip, against the opening 2 da
+  // behind it; then Richardson's extrapolation of G(da) and G(2 da) to da -> 0, with the
+  // contact forces as they are (c = 1, see the header).
+  const double to_2da = std::sqrt(2.0 * t.length_m / t.second_distance_m);
+  const double closure2_n = (std::max(t.tip_normal_N, 0.0) + std::max(t.far_normal_N, 0.0)) *
+                            std::max(t.second_opening_m * to_2da, 0.0);
+  const double closure2_s = (t.tip_shear_N + t.far_shear_N) * t.second_slip_m * to_2da;
+  const double scale1 = 1.0 / (2.0 * t.length_m), scale2 = 1.0 / (4.0 * t.length_m);
+  return {std::max(2.0 * scale1 * closure_n - scale2 * closure2_n, 0.0),
+          std::max(2.0 * scale1 * std::abs(closure_s) - scale2 * std::abs(closure2_s), 0.0)};
 }
 
 double stress_intensity_Pa_sqrt_m(double energy_release_rate_J_m2, double plane_strain_modulus_Pa) {
@@ -34,8 +45,8 @@ double energy_release_rate_J_m2(double stress_intensity_Pa_sqrt_m, double plane_
   return stress_intensity_Pa_sqrt_m * stress_intensity_Pa_sqrt_m / plane_strain_modulus_Pa;
 }
 
-StressIntensities stress_intensities(const CrackTip& tip) {
-  const EnergyReleaseRates g = vcct_energy_release_rates(tip);
+StressIntensities stress_intensities(const CrackTip& tip, CrackClosure closure) {
+  const EnergyReleaseRates g = vcct_energy_release_rates(tip, closure);
   const double k2 = stress_intensity_Pa_sqrt_m(g.mode2_J_m2, tip.plane_strain_modulus_Pa);
   return {stress_intensity_Pa_sqrt_m(g.mode1_J_m2, tip.plane_strain_modulus_Pa), tip.far_slip_m < 0.0 ? -k2 : k2};
 }
@@ -48,7 +59,7 @@ double mixed_mode_ratio(const EnergyReleaseRates& g, const Toughness& k, double 
 }
 
 double mixed_mode_ratio(const CrackTip& tip, const Toughness& toughness) {
-  return mixed_mode_ratio(vcct_energy_release_rates(tip), toughness, tip.plane_strain_modulus_Pa);
+  return mixed_mode_ratio(vcct_energy_release_rates(tip, toughness.closure), toughness, tip.plane_strain_modulus_Pa);
 }
 
 double kink_angle_rad(double mode1_Pa_sqrt_m, double mode2_Pa_sqrt_m) {
@@ -85,6 +96,8 @@ CrackTip interpolated(const CrackTip& a, const CrackTip& b, double w) {
   t.far_slip_m = at(a.far_slip_m, b.far_slip_m);
   t.near_opening_m = at(a.near_opening_m, b.near_opening_m);
   t.near_slip_m = at(a.near_slip_m, b.near_slip_m);
+  t.second_opening_m = at(a.second_opening_m, b.second_opening_m);
+  t.second_slip_m = at(a.second_slip_m, b.second_slip_m);
   return t;
 }
 

@@ -26,10 +26,18 @@ namespace hfdda::fracture {
 /// Which rule fails an intact joint at a crack tip.
 enum class FailureCriterion { strength, energy_release_rate };
 
-/// Critical energy release rates from the toughnesses of the case [Pa m^0.5].
+/// How G is read from the discrete crack closure (vcct_energy_release_rates).
+enum class CrackClosure {
+  one_joint,     ///< the joint ahead closed against the joint behind (error O(da / a))
+  extrapolated,  ///< one joint and two joints of closure, extrapolated to da -> 0
+};
+
+/// Critical energy release rates from the toughnesses of the case [Pa m^0.5], and how
+/// G is evaluated.
 struct Toughness {
   double mode1_Pa_sqrt_m = 0.0;  ///< K_IC
   double mode2_Pa_sqrt_m = 0.0;  ///< K_IIC (the case's default: K_IC)
+  CrackClosure closure = CrackClosure::one_joint;
 };
 
 /// The discrete crack-closure data of one crack tip, in the tip's frame: e along the
@@ -49,6 +57,10 @@ struct CrackTip {
   double far_opening_m = 0.0, far_slip_m = 0.0;
   /// Opening and slip of the joint behind at the tip point [m] (zero for a sharp tip).
   double near_opening_m = 0.0, near_slip_m = 0.0;
+  /// Opening and slip at the far end of the second broken joint behind (the one that
+  /// continues the joint behind in a straight line), and that end's distance from the
+  /// tip [m]; distance 0: there is none (CrackClosure::extrapolated then reads one joint).
+  double second_opening_m = 0.0, second_slip_m = 0.0, second_distance_m = 0.0;
   double plane_strain_modulus_Pa = 0.0;  ///< E' = E / (1 - nu^2) of the rock at the tip
 };
 
@@ -83,7 +95,22 @@ inline constexpr double kLumpedClosureFactor = 1.1107207345395915;
 /// A Mode I pair counts only with tension and opening (F_n > 0, d_n > 0): compression
 /// or faces pressed together release nothing. Throws std::invalid_argument for a
 /// non-positive length.
-EnergyReleaseRates vcct_energy_release_rates(const CrackTip& tip);
+///
+/// CrackClosure::extrapolated: the pairing over one joint errs by O(da / a) (the joint
+/// ahead reaches beyond the near-tip field: K_I 4 % low at a = 2 da on the Griffith
+/// field). The pairing over a closure of 2 da, the whole joint ahead's two forces at the
+/// tip against the opening 2 da behind (the second joint's far end, scaled by
+/// sqrt(2 da / r2)), errs twice as much to first order, so G = 2 G(da) - G(2 da)
+/// (Richardson) removes it:
+///   G_I(da) = [F_n,tip d_n(da) + F_n,far d_n(0)] / (2 da),
+///   G_I(2 da) = [F_n,tip + F_n,far] d_n(2 da) / (4 da)   (each force and d >= 0),
+/// Mode II alike with |.|; each mode's result at least 0. Here the contact forces count as
+/// they are, the textbook VCCT of nodal forces (c = 1), not with the factor c above: on
+/// the DDA meshes the extrapolated rates with c converge to c G under refinement (Mode I
+/// failure stresses 5-6 % below LEFM at every joint length, docs/design_notes.md section
+/// 36), i.e. the contact forces next to a tip are not the half-joint integrals of the
+/// singular traction that c assumes. Without a second joint behind, one joint (with c).
+EnergyReleaseRates vcct_energy_release_rates(const CrackTip& tip, CrackClosure closure = CrackClosure::one_joint);
 
 /// K = sqrt(G E') [Pa m^0.5] (Irwin, plane strain).
 double stress_intensity_Pa_sqrt_m(double energy_release_rate_J_m2, double plane_strain_modulus_Pa);
@@ -92,7 +119,7 @@ double energy_release_rate_J_m2(double stress_intensity_Pa_sqrt_m, double plane_
 
 /// K_I and K_II of a tip from its VCCT energy release rates; K_II takes the sign of the
 /// slip at the far end of the joint behind.
-StressIntensities stress_intensities(const CrackTip& tip);
+StressIntensities stress_intensities(const CrackTip& tip, CrackClosure closure = CrackClosure::one_joint);
 
 /// G_I / G_IC + G_II / G_IIC with G_C = K_C^2 / E' (the linear mixed-mode law; equal
 /// toughnesses make it K_I^2 + K_II^2 >= K_IC^2). Throws std::invalid_argument for a

@@ -298,7 +298,7 @@ void check_fracture_criterion(const CaseConfig& c, const MergedChecker& m) {
   const bool energy = c.fracture.criterion == FailureCriterionKind::energy_release_rate;
   if (energy && !c.fracture.fracture_toughness_Pa_sqrt_m)
     m.fail("fracture.fracture_toughness", "is required with criterion: energy_release_rate (K_IC at crack tips)");
-  for (const char* key : {"fracture_toughness", "mode2_toughness"})
+  for (const char* key : {"fracture_toughness", "mode2_toughness", "crack_closure"})
     if (!energy && m.present(std::string("fracture.") + key))
       m.fail(std::string("fracture.") + key, "is only used with criterion: energy_release_rate");
 }
@@ -458,8 +458,8 @@ const std::vector<CrossCheck>& cross_checks() {
        check_fluid_used},
       {"Probe names are distinct.", check_probe_names},
       {"`numerics.min_width_tip` <= `numerics.min_width_main`.", check_min_widths},
-      {"`fracture.fracture_toughness` is required with `fracture.criterion: energy_release_rate`; it and "
-       "`fracture.mode2_toughness` are only used with it.",
+      {"`fracture.fracture_toughness` is required with `fracture.criterion: energy_release_rate`; it, "
+       "`fracture.mode2_toughness` and `fracture.crack_closure` are only used with it.",
        check_fracture_criterion},
       {"`breakable_patterns` need `mesh.type: structured`; diagonal lines (`plus_45`, "
        "`minus_45`) need `mesh.split: four`.",

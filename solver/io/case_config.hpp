@@ -328,8 +328,12 @@ enum class FailureCriterionKind { strength, energy_release_rate };
 /// How intact joints fail: the seed's strength rule everywhere (seed 2.3), or, at crack
 /// tips, a toughness criterion on the energy release rates computed from the solution by
 /// virtual crack closure (docs/formulation.md section 5), the strength rule elsewhere.
+/// How the toughness criterion reads G from the crack closure (`fracture.crack_closure`).
+enum class CrackClosureKind { one_joint, extrapolated };
+
 struct FractureCriterionConfig {
   FailureCriterionKind criterion = FailureCriterionKind::strength;
+  CrackClosureKind crack_closure = CrackClosureKind::one_joint;
   std::optional<double> fracture_toughness_Pa_sqrt_m;  ///< K_IC; required with energy_release_rate
   std::optional<double> mode2_toughness_Pa_sqrt_m;     ///< K_IIC; unset: K_IC
 };

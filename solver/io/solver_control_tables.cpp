@@ -183,6 +183,13 @@ const Table<FractureCriterionConfig>& fracture_criterion_table() {
               &FractureCriterionConfig::criterion,
               Choices<FailureCriterionKind>{{"strength", FailureCriterionKind::strength},
                                             {"energy_release_rate", FailureCriterionKind::energy_release_rate}}),
+       choice({"crack_closure", "", "none (HFDDA)",
+               "energy_release_rate: one_joint (the joint ahead closed against the joint behind) or extrapolated "
+               "(one and two joints of closure, extrapolated to a vanishing joint: removes the O(L / a) error of "
+               "one joint; one joint where no straight second joint lies behind)"},
+              &FractureCriterionConfig::crack_closure,
+              Choices<CrackClosureKind>{{"one_joint", CrackClosureKind::one_joint},
+                                        {"extrapolated", CrackClosureKind::extrapolated}}),
        optional_number({"fracture_toughness", "Pa m^0.5", "§4.5: K_IC = 0.886 and 4.43 MPa m^0.5 (erratum 7)",
                         "energy_release_rate: Mode I toughness K_IC at crack tips"},
                        &FractureCriterionConfig::fracture_toughness_Pa_sqrt_m, positive_up_to(kMaxStrength),

@@ -485,6 +485,9 @@ fracture::FractureRules fracture_rules(const io::CaseConfig& c) {
     r.criterion = fracture::FailureCriterion::energy_release_rate;
     r.toughness.mode1_Pa_sqrt_m = *c.fracture.fracture_toughness_Pa_sqrt_m;
     r.toughness.mode2_Pa_sqrt_m = c.fracture.mode2_toughness_Pa_sqrt_m.value_or(r.toughness.mode1_Pa_sqrt_m);
+    r.toughness.closure = c.fracture.crack_closure == io::CrackClosureKind::extrapolated
+                              ? fracture::CrackClosure::extrapolated
+                              : fracture::CrackClosure::one_joint;
   }
   return r;
 }
