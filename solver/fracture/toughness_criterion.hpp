@@ -37,7 +37,7 @@ enum class CrackClosure {
 struct Toughness {
   double mode1_Pa_sqrt_m = 0.0;  ///< K_IC
   double mode2_Pa_sqrt_m = 0.0;  ///< K_IIC (the case's default: K_IC)
-  CrackClosure closure = CrackClosure::one_joint;
+  CrackClosure closure = CrackClosure::extrapolated;
 };
 
 /// The discrete crack-closure data of one crack tip, in the tip's frame: e along the

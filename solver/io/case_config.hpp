@@ -333,7 +333,7 @@ enum class CrackClosureKind { one_joint, extrapolated };
 
 struct FractureCriterionConfig {
   FailureCriterionKind criterion = FailureCriterionKind::strength;
-  CrackClosureKind crack_closure = CrackClosureKind::one_joint;
+  CrackClosureKind crack_closure = CrackClosureKind::extrapolated;
   std::optional<double> fracture_toughness_Pa_sqrt_m;  ///< K_IC; required with energy_release_rate
   std::optional<double> mode2_toughness_Pa_sqrt_m;     ///< K_IIC; unset: K_IC
 };
