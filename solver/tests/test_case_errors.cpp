@@ -169,6 +169,16 @@ TEST(CaseFileErrors, FractureCriterionAndItsToughness) {
   EXPECT_EQ(c.fracture.fracture_toughness_Pa_sqrt_m, std::optional<double>(0.886e6));
   EXPECT_FALSE(c.fracture.mode2_toughness_Pa_sqrt_m.has_value());
   EXPECT_EQ(load_case_text("title: default\n", "default.yaml").fracture.criterion, FailureCriterionKind::strength);
+  // The crack closure: a choice of the toughness criterion only, extrapolated by default.
+  EXPECT_EQ(c.fracture.crack_closure, CrackClosureKind::extrapolated);
+  expect_text_error("fracture: {criterion: energy_release_rate, fracture_toughness: 1e6,\n  crack_closure: two_joints}\n",
+                    2, "fracture.crack_closure", "must be one of: one_joint, extrapolated (got 'two_joints')");
+  expect_text_error("fracture:\n  crack_closure: one_joint\n", 2, "fracture.crack_closure",
+                    "is only used with criterion: energy_release_rate");
+  EXPECT_EQ(load_case_text("fracture: {criterion: energy_release_rate, fracture_toughness: 1e6, crack_closure: one_joint}\n",
+                           "one.yaml")
+                .fracture.crack_closure,
+            CrackClosureKind::one_joint);
 }
 
 TEST(CaseFileErrors, BadEnumListsAllowedValues) {
