@@ -94,73 +94,141 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     return;
   }
   operator_.reset();
-  const bool converged_response = system.settings().converged_response();
-  if (!topology_changed_ && !converged_response && correct_sensitivity(solver)) {
-    ++stats_.sensitivity_corrections;
-    stats_.seconds_sensitivity += seconds_since(start);
-    return;
-  }
-
-  // S = J K^-1 B, a few dozen columns per solve; with K's iterated springs stiffened,
-  // the response of the converged contact problem (respond() then shifts the base).
-  const dda::SpdSolver& response = converged_response ? system.converged_response_solver() : solver;
-  sensitivity_.setZero(2 * nf, n);
-  Eigen::MatrixXd rhs;
-  for (int first = 0; first < n; first += kColumnsPerSolve) {
-    const int cols = std::min(kColumnsPerSolve, n - first);
-    rhs.setZero(6 * nb, cols);
-    for (int c = 0; c < cols; ++c)
-      for (const NodeLoad& l : loads_[first + c]) rhs.block<6, 1>(6 * l.block, c) += l.force;
-    const Eigen::MatrixXd x = response.solve(rhs);
-    for (int e = 0; e < 2 * nf; ++e) {
-      const auto& g = gaps_[e];
-      sensitivity_.row(e).segment(first, cols) =
-          g.row_a * x.middleRows<6>(6 * g.block_a) + g.row_b * x.middleRows<6>(6 * g.block_b);
-    }
-  }
-  if (converged_response) {
-    base_factorization_ = -1;  // S_c is not corrected for low-rank changes of K
+  last_update_size_ = 0.0;
+  if (system.settings().converged_response()) {
+    // S_c from K with the iterated springs stiffened: respond() then shifts the base.
+    response_version_ = -1;
+    form_sensitivity(system, system.converged_response_solver(), false);
   } else {
-    // The base of later corrections: S of the factorised K0, without this K's changes.
-    sensitivity_base_ = sensitivity_;
-    if (solver.modified_rank() > 0) sensitivity_base_ += low_rank_correction(solver);
-    base_factorization_ = solver.factorizations();
-    base_gaps_ = gaps_;
+    const double bytes = 6.0 * nb * n * sizeof(double);
+    form_sensitivity(system, solver, bytes <= kMaxResponseBytes);
   }
-  ++stats_.sensitivity_builds;
   topology_changed_ = false;
   stats_.seconds_sensitivity += seconds_since(start);
 }
 
-bool HydroMechanicalCoupling::correct_sensitivity(const dda::SpdSolver& solver) {
-  const int rank = solver.modified_rank();
-  if (base_factorization_ != solver.factorizations() || rank == 0 ||
-      solver.woodbury_solutions().cols() != rank || base_gaps_.size() != gaps_.size() ||
-      sensitivity_base_.cols() != static_cast<Eigen::Index>(loads_.size()))
-    return false;
-  for (std::size_t e = 0; e < gaps_.size(); ++e) {
-    const dda::JointEndGap& a = gaps_[e];
-    const dda::JointEndGap& b = base_gaps_[e];
-    if (a.block_a != b.block_a || a.block_b != b.block_b || a.row_a != b.row_a || a.row_b != b.row_b) return false;
+void HydroMechanicalCoupling::form_sensitivity(const dda::BlockSystem& system, const dda::SpdSolver& solver,
+                                               bool keep) {
+  const auto& nodes = network_.trial_nodes();
+  const int n = static_cast<int>(nodes.size());
+  const int rows = 6 * system.n_blocks();
+  if (!keep) response_version_ = -1;
+  if (response_version_ >= 0 && response_version_ != system.stiffness_version() && !update_responses(system))
+    response_version_ = -1;
+
+  // Columns of X: kept where the node's loads are those X was solved for, solved otherwise.
+  std::vector<int> kept_column(n, -1), to_solve;
+  if (response_version_ >= 0) {
+    std::vector<int> column_of_point(network_.n_points(), -1);
+    for (std::size_t c = 0; c < response_points_.size(); ++c) column_of_point[response_points_[c]] = static_cast<int>(c);
+    const auto same = [](const NodeLoad& a, const NodeLoad& b) { return a.block == b.block && a.force == b.force; };
+    for (int i = 0; i < n; ++i) {
+      const int c = column_of_point[nodes[i]];
+      if (c >= 0 && std::equal(loads_[i].begin(), loads_[i].end(), response_loads_[c].begin(),
+                               response_loads_[c].end(), same))
+        kept_column[i] = c;
+    }
   }
-  sensitivity_ = sensitivity_base_ - low_rank_correction(solver);
+  for (int i = 0; i < n; ++i)
+    if (kept_column[i] < 0) to_solve.push_back(i);
+  if (to_solve.size() < static_cast<std::size_t>(n)) ++stats_.sensitivity_corrections;
+  else ++stats_.sensitivity_builds;
+  stats_.response_columns_solved += static_cast<int>(to_solve.size());
+
+  Eigen::MatrixXd x_new;
+  if (keep) {
+    x_new.resize(rows, n);
+    for (int i = 0; i < n; ++i)
+      if (kept_column[i] >= 0) x_new.col(i) = responses_.col(kept_column[i]);
+  }
+  const auto project = [this](const Eigen::MatrixXd& x, std::size_t e, Eigen::Index col) {
+    const auto& g = gaps_[e];
+    return g.row_a.dot(x.col(col).segment<6>(6 * g.block_a)) + g.row_b.dot(x.col(col).segment<6>(6 * g.block_b));
+  };
+  sensitivity_.setZero(static_cast<Eigen::Index>(gaps_.size()), n);
+  Eigen::MatrixXd rhs;
+  for (std::size_t first = 0; first < to_solve.size(); first += kColumnsPerSolve) {
+    const int cols = static_cast<int>(std::min<std::size_t>(kColumnsPerSolve, to_solve.size() - first));
+    rhs.setZero(rows, cols);
+    for (int c = 0; c < cols; ++c)
+      for (const NodeLoad& l : loads_[to_solve[first + c]]) rhs.block<6, 1>(6 * l.block, c) += l.force;
+    const Eigen::MatrixXd x = solver.solve(rhs);
+    for (int c = 0; c < cols; ++c) {
+      const int i = to_solve[first + c];
+      if (keep) {
+        x_new.col(i) = x.col(c);
+      } else {
+        for (std::size_t e = 0; e < gaps_.size(); ++e) sensitivity_(e, i) = project(x, e, c);
+      }
+    }
+  }
+  if (!keep) return;
+  for (int i = 0; i < n; ++i)
+    for (std::size_t e = 0; e < gaps_.size(); ++e) sensitivity_(e, i) = project(x_new, e, i);
+  responses_.swap(x_new);
+  response_points_ = nodes;
+  response_loads_ = loads_;
+  response_version_ = system.stiffness_version();
+}
+
+bool HydroMechanicalCoupling::update_responses(const dda::BlockSystem& system) {
+  std::vector<dda::SpringTerm> changes;
+  if (!system.spring_changes_since(response_version_, changes)) return false;
+  const int r = static_cast<int>(changes.size());
+  const int n = static_cast<int>(responses_.cols());
+  // r solves and a product of r columns, against solving the n columns anew.
+  if (r >= n) return false;
+  if (r > 0) {
+    const int rows = static_cast<int>(responses_.rows());
+    // K_new = K_old + C D C^T, column s of C: sqrt(|k_s|) e_s, D = sign(k_s). With
+    // Y = K_new^-1 C: K_new^-1 = K_old^-1 - Y N^-1 Y^T, N = D - C^T Y.
+    Eigen::MatrixXd c = Eigen::MatrixXd::Zero(rows, r);
+    for (int k = 0; k < r; ++k) {
+      const dda::SpringTerm& t = changes[k];
+      const double scale = std::sqrt(std::abs(t.stiffness));
+      c.col(k).segment<6>(6 * t.block_a) += scale * t.row_a.transpose();
+      c.col(k).segment<6>(6 * t.block_b) += scale * t.row_b.transpose();
+    }
+    const Eigen::MatrixXd y = system.solver().solve(c);
+    Eigen::MatrixXd nmat(r, r);
+    for (int k = 0; k < r; ++k) {
+      const dda::SpringTerm& t = changes[k];
+      const double scale = std::sqrt(std::abs(t.stiffness));
+      nmat.row(k) = -scale * (t.row_a * y.middleRows<6>(6 * t.block_a) + t.row_b * y.middleRows<6>(6 * t.block_b));
+      nmat(k, k) += t.stiffness > 0.0 ? 1.0 : -1.0;
+    }
+    Eigen::MatrixXd ytb = Eigen::MatrixXd::Zero(r, n);  // Y^T B for the loads X was solved for
+    for (int i = 0; i < n; ++i)
+      for (const NodeLoad& l : response_loads_[i])
+        ytb.col(i).noalias() += y.middleRows<6>(6 * l.block).transpose() * l.force;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(nmat);
+    if (!(lu.rcond() > 1e-14)) return false;  // the new K singular where the springs act
+    const Eigen::MatrixXd correction = y * lu.solve(ytb);
+    responses_ -= correction;
+    // Checked like a corrected factorisation (dda/low_rank_updates.cpp): K X v = B v.
+    Eigen::VectorXd bv = Eigen::VectorXd::Zero(rows);
+    for (int i = 0; i < n; ++i)
+      for (const NodeLoad& l : response_loads_[i]) bv.segment<6>(6 * l.block) += l.force;
+    const Eigen::VectorXd xv = responses_.rowwise().sum();
+    const double residual = (system.stiffness().multiply(xv) - bv).norm() / bv.norm();
+    if (!(residual <= kResponseResidual)) return false;
+    // For tests: how far the update moved S (the rows of the gaps X was last used with).
+    double moved = 0.0;
+    for (const auto& g : gaps_)
+      for (int i = 0; i < n; ++i)
+        moved = std::max(moved, std::abs(g.row_a.dot(correction.col(i).segment<6>(6 * g.block_a)) +
+                                         g.row_b.dot(correction.col(i).segment<6>(6 * g.block_b))));
+    const double scale = sensitivity_.size() > 0 ? sensitivity_.cwiseAbs().maxCoeff() : 0.0;
+    last_update_size_ = scale > 0.0 ? moved / scale : 0.0;
+  }
+  response_version_ = system.stiffness_version();
   return true;
 }
 
-Eigen::MatrixXd HydroMechanicalCoupling::low_rank_correction(const dda::SpdSolver& solver) const {
-  // K^-1 = K0^-1 - W M^-1 W^T with W = K0^-1 C: S = J K0^-1 B - (J W) M^-1 (W^T B).
-  const Eigen::MatrixXd& w = solver.woodbury_solutions();
-  const int n_ends = static_cast<int>(gaps_.size());
-  const int n_nodes = static_cast<int>(loads_.size());
-  Eigen::MatrixXd jw(n_ends, w.cols());
-  for (int e = 0; e < n_ends; ++e) {
-    const auto& g = gaps_[e];
-    jw.row(e) = g.row_a * w.middleRows<6>(6 * g.block_a) + g.row_b * w.middleRows<6>(6 * g.block_b);
-  }
-  Eigen::MatrixXd wtb = Eigen::MatrixXd::Zero(w.cols(), n_nodes);
-  for (int i = 0; i < n_nodes; ++i)
-    for (const NodeLoad& l : loads_[i]) wtb.col(i).noalias() += w.middleRows<6>(6 * l.block).transpose() * l.force;
-  return jw * solver.solve_capacitance(wtb);
+bool HydroMechanicalCoupling::responses_apply(const dda::BlockSystem& system) const {
+  if (response_version_ < 0 || response_version_ != system.stiffness_version()) return false;
+  if (responses_.cols() != network_.trial_pressure().size()) return false;
+  return static_cast<double>(responses_.size()) <= 2.0 * static_cast<double>(system.solver().factor_entries());
 }
 
 void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::VectorXd& d) {
@@ -201,7 +269,13 @@ void HydroMechanicalCoupling::respond(const dda::BlockSystem& system, Eigen::Vec
   refresh_pressurised();
 
   const Eigen::VectorXd& p = network_.trial_pressure();
-  const Eigen::VectorXd pressure_displacement = system.solver().solve(pressure_load(system, p));
+  Eigen::VectorXd pressure_displacement;
+  if (responses_apply(system)) {
+    pressure_displacement.noalias() = responses_ * p;
+    ++stats_.response_products;
+  } else {
+    pressure_displacement = system.solver().solve(pressure_load(system, p));
+  }
   d += pressure_displacement;  // the mechanical displacement plus K^-1 B p
   if (system.settings().converged_response() && !operator_) {
     pressure_response_ = end_gaps(pressure_displacement);

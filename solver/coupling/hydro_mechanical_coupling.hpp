@@ -7,10 +7,13 @@
 // wetted joints per unit nodal pressure. The apertures of the wetted joint ends are
 // then affine in the nodal pressures,
 //     w(p) = g0 + J K^-1 F_mech + (J K^-1 B) p,
-// where J holds the linearised gaps. The coupling computes S = J K^-1 B once per
-// factorisation of K (one multi-right-hand-side solve) and hands w(p) to the flow
-// network, whose Newton iteration solves the coupled mass balance exactly; the block
-// displacement follows with one more solve. Outer iterations (the coupled step's
+// where J holds the linearised gaps. The coupling keeps X = K^-1 B (multi-right-hand-
+// side solves), forms S = J X and hands w(p) to the flow network, whose Newton
+// iteration solves the coupled mass balance exactly; the block displacement follows as
+// X p. Within a step X follows K's changes (Woodbury identity on the springs that
+// changed) and the network's growth (solves for new columns only), instead of being
+// solved anew at every open-close iteration (docs/design_notes.md section 37).
+// Outer iterations (the coupled step's
 // open-close loop) add the joints the fluid reaches: a joint joins the network once
 // one of its end contacts is open at a pressurised node (Figure 2.8).
 
@@ -40,8 +43,10 @@ struct CouplingStatistics {
   int max_nodes = 0;
   double max_relative_residual = 0.0;
   double seconds_sensitivity = 0.0;  ///< building S = J K^-1 B
-  int sensitivity_builds = 0;        ///< S built by its solves
-  int sensitivity_corrections = 0;   ///< S corrected for low-rank changes of K instead
+  int sensitivity_builds = 0;        ///< X = K^-1 B solved for all its columns
+  int sensitivity_corrections = 0;   ///< X updated for springs changed in K and new columns instead
+  int response_columns_solved = 0;   ///< columns of X solved (builds and new columns)
+  int response_products = 0;         ///< block displacements taken as X p instead of a solve
   double seconds_flow = 0.0;
   long sensitivity_products = 0;  ///< products with the operator S (krylov)
   long krylov_iterations = 0;
@@ -69,18 +74,34 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   const CouplingStatistics& statistics() const { return stats_; }
   const fluid::FlowNetwork& network() const { return network_; }
   /// S as handed to the flow solve by the last prepare() (dense path; empty on the krylov
-  /// path): tests compare a corrected S with one rebuilt from a new factorisation
-  /// (docs/design_notes.md section 26).
+  /// path): tests compare an updated S with one rebuilt from a new factorisation
+  /// (docs/design_notes.md section 37).
   const Eigen::MatrixXd& sensitivity() const { return sensitivity_; }
+  /// Largest entry of J (X_updated - X_before) of the last update of X for springs
+  /// changed in K, relative to the largest of S (0 when the last prepare made none).
+  double last_update_size() const { return last_update_size_; }
+
+  /// X = K^-1 B is kept while it takes at most this many bytes (a network of 1,000
+  /// nodes on 12,800 blocks: 0.6 GB); larger networks have S formed column block by
+  /// column block and the displacements solved, as before X was kept.
+  static constexpr double kMaxResponseBytes = 512.0 * 1024 * 1024;
+  /// |K X v - B v| / |B v| (v all ones) above which an updated X is dropped and solved
+  /// anew: the bound of a corrected factorisation (dda::BlockSystem::kLowRankResidual).
+  static constexpr double kResponseResidual = 1e-7;
 
  private:
   void refresh_pressurised();
-  /// S for a low-rank change of the K that sensitivity_base_ was built with (Woodbury
-  /// identity, dda::SpdSolver::modify); false if S must be built by its solves.
-  bool correct_sensitivity(const dda::SpdSolver& solver);
-  /// (J W) M^-1 (W^T B): what the low-rank changes of K take off J K0^-1 B.
-  Eigen::MatrixXd low_rank_correction(const dda::SpdSolver& solver) const;
   bool use_krylov() const { return jacobian_ == FlowJacobian::krylov; }
+  /// S = J K^-1 B for the current K and network: from the kept X where it can follow
+  /// (update_responses, new columns solved), from solves of every column otherwise.
+  void form_sensitivity(const dda::BlockSystem& system, const dda::SpdSolver& solver, bool keep);
+  /// X for the springs changed in K since X's version: X -= Y N^-1 (Y^T B), Y = K^-1 C,
+  /// N = D - C^T Y (Woodbury identity with the new factor); false when X cannot follow
+  /// (K changed otherwise, too many springs, the check solve fails).
+  bool update_responses(const dda::BlockSystem& system);
+  /// X p replaces a solve where X is of the current K and reads no more memory than
+  /// the solve's two passes through the factor.
+  bool responses_apply(const dda::BlockSystem& system) const;
   /// B p: the block forces of nodal pressures p (in work_).
   const Eigen::VectorXd& pressure_load(const dda::BlockSystem& system, const Eigen::VectorXd& p);
   /// J u: the normal gaps of the fracture ends for block displacements u.
@@ -92,10 +113,13 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   std::vector<dda::JointEndGap> gaps_;           // per trial fracture end
   std::vector<std::vector<NodeLoad>> loads_;     // per trial node
   Eigen::MatrixXd sensitivity_;                  // S = J K^-1 B [m/Pa] (dense path)
-  // J K0^-1 B for the factorisation K0 numbered base_factorization_, with its J.
-  Eigen::MatrixXd sensitivity_base_;
-  int base_factorization_ = -1;
-  std::vector<dda::JointEndGap> base_gaps_;
+  // X = K^-1 B [m/Pa, rad/Pa] for the K numbered response_version_ (-1: none kept), one
+  // column per node: the node's mesh point and the loads B's column had when solved.
+  Eigen::MatrixXd responses_;
+  int response_version_ = -1;
+  std::vector<int> response_points_;
+  std::vector<std::vector<NodeLoad>> response_loads_;
+  double last_update_size_ = 0.0;
   std::vector<std::array<int, 2>> nodes_of_fracture_;  // per trial fracture
   std::unique_ptr<ApertureOperator> operator_;   // S as an operator (krylov path)
   Eigen::VectorXd work_;

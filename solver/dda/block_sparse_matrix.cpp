@@ -124,17 +124,6 @@ cholmod_sparse view_lower(const Eigen::SparseMatrix<double>& lower) {
   return a;
 }
 
-cholmod_dense view_dense(const Eigen::MatrixXd& b) {
-  cholmod_dense d{};
-  d.nrow = d.d = static_cast<std::size_t>(b.rows());
-  d.ncol = static_cast<std::size_t>(b.cols());
-  d.nzmax = d.nrow * d.ncol;
-  d.x = const_cast<double*>(b.data());
-  d.xtype = CHOLMOD_REAL;
-  d.dtype = CHOLMOD_DOUBLE;
-  return d;
-}
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -146,6 +135,12 @@ struct SpdSolver::Cholmod {
   cholmod_factor* factor = nullptr;    // supernodal LL' of the last factorize()
   cholmod_factor* modified = nullptr;  // simplicial LDL' with the springs modified since
   std::vector<int> new_row;            // original unknown -> row of the permuted factor
+  // cholmod_solve2's solution and workspace, kept between solves: allocating them anew
+  // for every solve of the contact iterations cost page faults (a vector of K's size is
+  // above malloc's mmap threshold).
+  cholmod_dense* solution = nullptr;
+  cholmod_dense* work_y = nullptr;
+  cholmod_dense* work_e = nullptr;
   Cholmod() {
     cholmod_start(&common);
     common.final_asis = 1;
@@ -156,6 +151,8 @@ struct SpdSolver::Cholmod {
     relax_supernodes(common);
   }
   ~Cholmod() {
+    for (cholmod_dense** d : {&solution, &work_y, &work_e})
+      if (*d) cholmod_free_dense(d, &common);
     free_modified();
     if (factor) cholmod_free_factor(&factor, &common);
     cholmod_finish(&common);
@@ -297,19 +294,36 @@ Eigen::VectorXd SpdSolver::woodbury_check_solve(const Eigen::VectorXd& x_exact) 
 
 Eigen::MatrixXd SpdSolver::solve_capacitance(const Eigen::MatrixXd& v) const { return capacitance_lu_.solve(v); }
 
-Eigen::MatrixXd SpdSolver::solve_factor(const Eigen::MatrixXd& rhs) const {
+std::size_t SpdSolver::factor_entries() const {
+  const cholmod_factor* f = cholmod_->active();
+  if (!f) return 0;
+  return f->is_super ? f->xsize : f->nzmax;
+}
+
+const double* SpdSolver::solve_factor_in_place(const double* rhs, int rows, int cols) const {
   Cholmod& c = *cholmod_;
-  cholmod_dense b = view_dense(rhs);
-  cholmod_dense* x = cholmod_solve(CHOLMOD_A, c.active(), &b, &c.common);
-  if (!x) throw std::runtime_error("CHOLMOD's solve failed");
-  Eigen::MatrixXd result = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(x->x), rhs.rows(), rhs.cols());
-  cholmod_free_dense(&x, &c.common);
-  return result;
+  cholmod_dense b{};
+  b.nrow = b.d = static_cast<std::size_t>(rows);
+  b.ncol = static_cast<std::size_t>(cols);
+  b.nzmax = b.nrow * b.ncol;
+  b.x = const_cast<double*>(rhs);
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  if (!cholmod_solve2(CHOLMOD_A, c.active(), &b, nullptr, &c.solution, nullptr, &c.work_y, &c.work_e, &c.common))
+    throw std::runtime_error("CHOLMOD's solve failed");
+  return static_cast<const double*>(c.solution->x);
+}
+
+Eigen::MatrixXd SpdSolver::solve_factor(const Eigen::MatrixXd& rhs) const {
+  const double* x = solve_factor_in_place(rhs.data(), static_cast<int>(rhs.rows()), static_cast<int>(rhs.cols()));
+  return Eigen::Map<const Eigen::MatrixXd>(x, rhs.rows(), rhs.cols());
 }
 
 Eigen::VectorXd SpdSolver::solve(const Eigen::VectorXd& rhs) const {
-  Eigen::MatrixXd x = solve(Eigen::MatrixXd(rhs));
-  return x.col(0);
+  const double* x = solve_factor_in_place(rhs.data(), static_cast<int>(rhs.size()), 1);
+  Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(x, rhs.size());
+  if (woodbury_solutions_.cols() > 0) y.noalias() -= woodbury_solutions_ * capacitance_lu_.solve(spring_projection(y));
+  return y;
 }
 
 Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& rhs) const {

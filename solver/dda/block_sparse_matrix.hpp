@@ -94,6 +94,9 @@ class SpdSolver {
   /// Forget the symbolic analysis (the pattern changed); the next factorize redoes it.
   void reset_pattern() { analysed_ = false; }
   int factorizations() const { return factorizations_; }
+  /// Entries stored in the factor (supernodal: with the relaxed supernodes' zeros): a
+  /// solve reads them twice, once per triangle, which bounds its cost by memory traffic.
+  std::size_t factor_entries() const;
   double factorization_seconds() const { return factorization_seconds_; }
   /// Rank-one modifications since the last factorize().
   int modified_rank() const { return static_cast<int>(modified_springs_.size()); }
@@ -127,6 +130,8 @@ class SpdSolver {
   /// C^T y for the modified springs (column s of C: sqrt(|k_s|) e_s).
   Eigen::MatrixXd spring_projection(const Eigen::MatrixXd& y) const;
   Eigen::MatrixXd solve_factor(const Eigen::MatrixXd& rhs) const;
+  /// K0^-1 rhs (rows x cols, column-major) into the kept solution block; valid until the next solve.
+  const double* solve_factor_in_place(const double* rhs, int rows, int cols) const;
 };
 
 }  // namespace hfdda::dda

@@ -35,7 +35,9 @@ BlockSystem::BlockSystem(const mesh::Mesh& mesh, std::vector<Material> materials
 
 void BlockSystem::begin_step(double dt_s) {
   factor_of_this_step_ = false;  // the block terms change
-  forget_changed_contacts();
+  for (const auto& entry : assembled_terms_) terms_remembered_[entry.first] = 0;
+  assembled_terms_.clear();
+  logged_from_version_ = -1;
   contacts_.begin_step();
   update_block_geometry();
   assemble_block_terms(dt_s);
@@ -45,6 +47,7 @@ void BlockSystem::begin_step(double dt_s) {
 void BlockSystem::assemble_and_factorise(StepStatistics& stats) {
   auto start = Clock::now();
   assemble_contacts();
+  log_spring_changes();
   stats.max_mechanism_blocks = std::max(stats.max_mechanism_blocks, static_cast<int>(held_blocks_.size()));
   stats.seconds_assembly += seconds_since(start);
   start = Clock::now();

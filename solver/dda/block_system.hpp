@@ -284,6 +284,13 @@ class BlockSystem {
 
   /// The assembled matrix of the last open-close iteration (tests, benchmarks).
   const BlockSparseMatrix& stiffness() const { return stiffness_; }
+  /// Number of the K of the last assemble_and_factorise(): every assembly counts one.
+  int stiffness_version() const { return stiffness_version_; }
+  /// The spring terms by which K changed from version `since` to the current one (a
+  /// negative stiffness removes a spring; low_rank_updates.cpp). False when K changed in
+  /// another way as well (a new step's block terms, the mechanism holds) or `since` is
+  /// not a version of this step: a model keeping products with K^-1 must then redo them.
+  bool spring_changes_since(int since, std::vector<SpringTerm>& changes) const;
 
  private:
   // block_loads.cpp
@@ -324,11 +331,12 @@ class BlockSystem {
     std::array<bool, 4> present{};
   };
   ContactTerms contact_terms(const Contact& c) const;
-  /// Before a change to contact `ci` within a step: keeps its terms as factorised.
-  void remember_factorised_terms(int ci);
-  void forget_changed_contacts();
-  /// Applies the spring changes since the last factorisation to it when they are few and
-  /// nothing else of K changed; false: K must be factorised.
+  /// Before a change to contact `ci` within a step: keeps its terms as last assembled.
+  void remember_assembled_terms(int ci);
+  /// After an assembly: the spring terms it changed, appended to the step's log.
+  void log_spring_changes();
+  /// Applies the spring changes of the last assembly to the factorisation when they are
+  /// few and nothing else of K changed; false: K must be factorised.
   bool modify_factor(StepStatistics& stats);
   double spring_gap(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   double spring_shear(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
@@ -390,8 +398,17 @@ class BlockSystem {
   // What the factorisation in solver_ (with its low-rank changes) is of.
   bool factor_of_this_step_ = false;
   std::vector<int> factorised_held_blocks_;
-  std::vector<std::pair<int, ContactTerms>> factorised_terms_;  // of contacts changed since
-  std::vector<char> terms_remembered_;                           // per contact
+  // How K changed within the step (low_rank_updates.cpp): the terms of the contacts
+  // changed since the last assembly, and the log of spring changes of the step's
+  // assemblies, each with the version of K it led to. The log holds every change of K
+  // after version logged_from_version_ (-1: none yet in this step).
+  std::vector<std::pair<int, ContactTerms>> assembled_terms_;  // of contacts changed since
+  std::vector<char> terms_remembered_;                          // per contact
+  std::vector<SpringTerm> spring_log_;
+  std::vector<int> spring_log_version_;
+  int stiffness_version_ = 0;
+  int logged_from_version_ = -1;
+  std::vector<int> assembled_held_blocks_;  // the mechanism holds of the last assembly
 };
 
 }  // namespace hfdda::dda

@@ -29,17 +29,12 @@ BlockSystem::ContactTerms BlockSystem::contact_terms(const Contact& c) const {
   return terms;
 }
 
-void BlockSystem::remember_factorised_terms(int ci) {
-  if (!settings_.low_rank_updates || !factor_of_this_step_) return;
+void BlockSystem::remember_assembled_terms(int ci) {
+  if (logged_from_version_ < 0) return;  // no assembly of this step to compare with yet
   if (terms_remembered_.size() != contacts_.all().size()) terms_remembered_.assign(contacts_.all().size(), 0);
   if (terms_remembered_[ci]) return;
   terms_remembered_[ci] = 1;
-  factorised_terms_.emplace_back(ci, contact_terms(contacts_[ci]));
-}
-
-void BlockSystem::forget_changed_contacts() {
-  for (const auto& [ci, terms] : factorised_terms_) terms_remembered_[ci] = 0;
-  factorised_terms_.clear();
+  assembled_terms_.emplace_back(ci, contact_terms(contacts_[ci]));
 }
 
 namespace {
@@ -49,25 +44,53 @@ bool same_term(const SpringTerm& a, const SpringTerm& b) {
 }
 }  // namespace
 
-bool BlockSystem::modify_factor(StepStatistics& stats) {
-  if (!settings_.low_rank_updates) return false;
-  const bool same_factor = factor_of_this_step_ && held_blocks_ == factorised_held_blocks_;
-  std::vector<SpringTerm> changes;
-  if (same_factor)
-    for (const auto& [ci, before] : factorised_terms_) {
+void BlockSystem::log_spring_changes() {
+  ++stiffness_version_;
+  if (logged_from_version_ < 0 || held_blocks_ != assembled_held_blocks_) {
+    // The first K of the step, or the mechanism holds changed its block terms: the base
+    // of the log from here on.
+    spring_log_.clear();
+    spring_log_version_.clear();
+    logged_from_version_ = stiffness_version_;
+  } else {
+    for (const auto& [ci, before] : assembled_terms_) {
       const ContactTerms now = contact_terms(contacts_[ci]);
       for (int k = 0; k < 4; ++k) {
         if (before.present[k] && now.present[k] && same_term(before.term[k], now.term[k])) continue;
         if (before.present[k]) {
-          changes.push_back(before.term[k]);
-          changes.back().stiffness = -changes.back().stiffness;
+          spring_log_.push_back(before.term[k]);
+          spring_log_.back().stiffness = -spring_log_.back().stiffness;
+          spring_log_version_.push_back(stiffness_version_);
         }
-        if (now.present[k]) changes.push_back(now.term[k]);
+        if (now.present[k]) {
+          spring_log_.push_back(now.term[k]);
+          spring_log_version_.push_back(stiffness_version_);
+        }
       }
     }
-  forget_changed_contacts();
+  }
+  for (const auto& entry : assembled_terms_) terms_remembered_[entry.first] = 0;
+  assembled_terms_.clear();
+  assembled_held_blocks_ = held_blocks_;
+}
+
+bool BlockSystem::spring_changes_since(int since, std::vector<SpringTerm>& changes) const {
+  changes.clear();
+  if (logged_from_version_ < 0 || since < logged_from_version_ || since > stiffness_version_) return false;
+  for (std::size_t i = 0; i < spring_log_.size(); ++i)
+    if (spring_log_version_[i] > since) changes.push_back(spring_log_[i]);
+  return true;
+}
+
+bool BlockSystem::modify_factor(StepStatistics& stats) {
+  if (!settings_.low_rank_updates) return false;
+  const bool same_factor = factor_of_this_step_ && held_blocks_ == factorised_held_blocks_;
+  std::vector<SpringTerm> changes;
+  // The factor is of the previous assembly's K (factorised or modified since): this
+  // assembly's changes are what it lacks.
+  if (!same_factor || !spring_changes_since(stiffness_version_ - 1, changes)) return false;
   const int rank = static_cast<int>(changes.size());
-  if (!same_factor || rank > kMaxLowRankPerAssembly || solver_.modified_rank() + rank > kMaxLowRank) return false;
+  if (rank > kMaxLowRankPerAssembly || solver_.modified_rank() + rank > kMaxLowRank) return false;
   if (changes.empty()) return true;  // the changes of this round cancelled out
   if (!solver_.modify(changes)) return false;
   // A downdate of a stiff spring can lose digits in the capacitance matrix: check a

@@ -142,7 +142,7 @@ void BlockSystem::describe_first_change(const Contact& c, ContactState to) {
 }
 
 void BlockSystem::apply_change(const ContactChange& ch, const Eigen::VectorXd& d, StepStatistics& stats) {
-  remember_factorised_terms(ch.contact);
+  remember_assembled_terms(ch.contact);
   Contact& c = contacts_[ch.contact];
   if (ch.breaks_bond) {
     c.bonded = false;

@@ -399,6 +399,49 @@ TEST(DdaContacts, LowRankUpdatesOfKSolveLikeNewFactorisations) {
     EXPECT_LT((solutions[1][i] - solutions[0][i]).norm(), 1e-10 * solutions[0][i].norm()) << "solve " << i;
 }
 
+TEST(DdaContacts, SpringLogGivesHowKChangedBetweenVersions) {
+  // The spring terms logged between two assemblies of a step add up to the difference
+  // of the two assembled K (a coupled model updates its K^-1 B with them,
+  // docs/design_notes.md section 37); a new step's block terms end the log.
+  const mesh::Mesh m = small_mesh(2, 2, 1.0, mesh::CellSplit::none);
+  BlockSystem system(m, {Material{}}, alm_settings(25e9));
+  system.add_fixed_point({0.0, 0.0});
+  system.add_fixed_point({2.0, 0.0});
+  system.add_point_load({0.0, 2.0}, {0.0, 1e6});
+  system.begin_step(1.0);
+  StepStatistics stats;
+  system.assemble_and_factorise(stats);
+  const int first = system.stiffness_version();
+  const Eigen::MatrixXd k_first = Eigen::MatrixXd(system.stiffness().matrix()).selfadjointView<Eigen::Lower>();
+  const Eigen::VectorXd d = system.solver().solve(system.contact_rhs());
+  const auto [open_p, open_q] = system.joint_contacts(0);
+  const int slipping = system.joint_contacts(1)[0];
+  system.apply_state_changes(d, {ContactChange{open_p, ContactState::open, true}, ContactChange{open_q, ContactState::open, true}}, stats);
+  system.assemble_and_factorise(stats);
+  system.apply_state_changes(d, {ContactChange{slipping, ContactState::sliding, true, 1.0}}, stats);
+  system.assemble_and_factorise(stats);
+  EXPECT_EQ(system.stiffness_version(), first + 2);
+  const Eigen::MatrixXd k_last = Eigen::MatrixXd(system.stiffness().matrix()).selfadjointView<Eigen::Lower>();
+  std::vector<SpringTerm> changes;
+  ASSERT_TRUE(system.spring_changes_since(first, changes));
+  EXPECT_EQ(changes.size(), 8u + 2u);  // the opened joint's normal and shear terms, the slipping end's shear
+  Eigen::MatrixXd k_sum = k_first;
+  for (const SpringTerm& t : changes) {
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(k_first.rows());
+    e.segment<6>(6 * t.block_a) += t.row_a.transpose();
+    e.segment<6>(6 * t.block_b) += t.row_b.transpose();
+    k_sum += t.stiffness * e * e.transpose();
+  }
+  EXPECT_LT((k_sum - k_last).norm(), 1e-12 * k_last.norm());
+  EXPECT_GT((k_first - k_last).norm(), 1e-3 * k_last.norm());
+  ASSERT_TRUE(system.spring_changes_since(first + 1, changes));
+  EXPECT_EQ(changes.size(), 2u);
+  EXPECT_FALSE(system.spring_changes_since(first - 1, changes));  // before the step's first K
+  system.begin_step(1.0);
+  system.assemble_and_factorise(stats);
+  EXPECT_FALSE(system.spring_changes_since(first + 2, changes));  // the block terms changed
+}
+
 TEST(DdaFracture, BondFailsInTensionOnlyNextToAnOpenPressurisedJoint) {
   // Two rows of blocks bonded along y = 1; pulling the top apart breaks the bonds only
   // when rule (i) of seed 2.3 is satisfied.
