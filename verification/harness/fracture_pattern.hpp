@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -104,6 +105,38 @@ inline std::string pattern_csv(const JointPattern& jp) {
         << ',' << int(jp.open[j]) << ',' << int(jp.invaded[j]) << '\n';
   }
   return out.str();
+}
+
+/// Open joints of a run from its joints CSV (pattern_csv): end-point text -> length [m].
+/// The variants of one network share their mesh, so equal text is the same joint.
+inline std::map<std::string, double> open_joints_of(const Metrics& m, const std::string& variant) {
+  std::map<std::string, double> open;
+  const auto file = m.files.find("joints_" + variant + ".csv");
+  if (file == m.files.end()) return open;
+  std::istringstream in(file->second);
+  std::string line;
+  std::getline(in, line);  // header: px,py,qx,qy,natural,open,invaded
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::string field[7];
+    for (auto& f : field) std::getline(row, f, ',');
+    if (field[5] != "1") continue;
+    const double dx = std::stod(field[2]) - std::stod(field[0]), dy = std::stod(field[3]) - std::stod(field[1]);
+    open[field[0] + ',' + field[1] + ',' + field[2] + ',' + field[3]] = std::hypot(dx, dy);
+  }
+  return open;
+}
+
+/// Length-weighted Jaccard index of two open sets, |A and B| / |A or B|; NaN if both are empty.
+inline double open_jaccard(const std::map<std::string, double>& a, const std::map<std::string, double>& b) {
+  double both = 0.0, either = 0.0;
+  for (const auto& [key, length] : a) {
+    either += length;
+    if (b.count(key)) both += length;
+  }
+  for (const auto& [key, length] : b)
+    if (!a.count(key)) either += length;
+  return either > 0.0 ? both / either : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace hfdda::verification

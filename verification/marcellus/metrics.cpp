@@ -1,6 +1,7 @@
 // Metrics of the Marcellus case (seed 5.4, Figure 5.19): the open and invaded joints at
 // the end of the run (harness/fracture_pattern.hpp), the open band's aspect and the
-// widths of the open and invaded bands along the minimum stress (y). Thresholds and
+// widths of the open and invaded bands along the minimum stress (y), and a round-off
+// twin's open set against its base run's. Thresholds and
 // checks are in study.yaml. Writes joints_<variant>.csv for plot.py.
 
 #include <cmath>
@@ -41,8 +42,23 @@ Metrics variant_metrics(const VariantRun& r) {
   return m;
 }
 
+/// A round-off twin (`compare_with`) against its base run: the length-weighted Jaccard
+/// similarity of their open sets (the same mesh: joints compared by their end points).
+void study_metrics(StudyOutcome& st) {
+  for (VariantOutcome& o : st.variants) {
+    const VariantSpec& v = o.variant();
+    if (!v.has("compare_with")) continue;
+    const VariantOutcome* base = st.find(v.text("compare_with"));
+    double similarity = std::numeric_limits<double>::quiet_NaN();
+    if (base && o.run.built && base->run.built)
+      similarity = open_jaccard(open_joints_of(o.metrics, v.name), open_joints_of(base->metrics, base->variant().name));
+    o.metrics.numbers["open_similarity"] = similarity;
+    o.metrics.json["open_similarity"] = finite_or_null(similarity);
+  }
+}
+
 }  // namespace
 
-CaseDefinition case_definition() { return {validate, variant_metrics, {}}; }
+CaseDefinition case_definition() { return {validate, variant_metrics, study_metrics}; }
 
 }  // namespace hfdda::verification

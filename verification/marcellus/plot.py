@@ -4,7 +4,8 @@ Usage: /usr/bin/python3 plot.py RESULT_DIR
 (reads result.json and joints_<variant>.csv written there by verify_marcellus)
 
 marcellus_quick.png / marcellus.png: the 250 m region at the end of the run, drawn like the
-seed's figure (harness/pattern_plots.py), with the open and invaded band widths.
+seed's figure (harness/pattern_plots.py), with the open and invaded band widths; in the
+full tier beside it the round-off twin (the rate x (1 + 1e-12)).
 """
 import os
 import sys
@@ -21,7 +22,14 @@ def main(result_dir):
     title = "Marcellus shale, " + ("first 10 min" if tier == "quick" else "1 h (seed Fig. 5.19)")
     if m.get("open_y_extent_m") is not None and m.get("invaded_y_extent_m") is not None:
         title += f"\nopen band {m['open_y_extent_m']:.0f} m wide, invaded band {m['invaded_y_extent_m']:.0f} m"
-    panels(result_dir, {}, [(variant, title)], "marcellus_quick.png" if tier == "quick" else "marcellus.png", 1)
+    entries = [(variant, title)]
+    twin = metrics.get("marcellus_twin") if isinstance(metrics, dict) and tier != "quick" else None
+    if twin:
+        twin_title = "the same, rate x (1 + 1e-12)"
+        if twin.get("open_similarity") is not None:
+            twin_title += f"\nopen set {twin['open_similarity']:.2f} similar (Jaccard)"
+        entries.append(("marcellus_twin", twin_title))
+    panels(result_dir, {}, entries, "marcellus_quick.png" if tier == "quick" else "marcellus.png", len(entries))
 
 
 if __name__ == "__main__":

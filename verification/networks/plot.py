@@ -8,6 +8,7 @@ joints invaded by fluid without being open lighter thick grey, the injection poi
 circle; the 250 m reservoir on the initial mesh. networks_quick.png: the quick run.
 networks_patterns.png: the two networks at dsigma = 0 and 12 MPa (Figures 5.10-5.13).
 networks_fluid.png: 100 mPa s at both stresses and 2 kg/s at dt = 30 s (Figures 5.14-5.16).
+networks_roundoff.png: each base run beside its round-off twin (rate x (1 + 1e-12)).
 """
 import os
 import sys
@@ -33,6 +34,15 @@ def main(result_dir):
             ("n45_s0_q2", "2 kg/s, dt = 30 s, 30 min (Fig. 5.16)"),
             ("n45_s12", "20 mPa s, 1 kg/s, dsigma = 12 MPa"), ("n45_s12_mu100", "100 mPa s, dsigma = 12 MPa (Fig. 5.15)")],
            "networks_fluid.png", 3)
+    twins = [(base, title) for base, title in
+             [("n45_s0", "sets 45/135, dsigma = 0"), ("n45_s12", "sets 45/135, dsigma = 12 MPa"),
+              ("n0_s0", "sets 0/90, dsigma = 0"), ("n0_s12", "sets 0/90, dsigma = 12 MPa")]
+             if base + "_twin" in summary]
+    if twins:
+        pairs = []
+        for base, title in twins:
+            pairs += [(base, title), (base + "_twin", title + ", rate x (1 + 1e-12)")]
+        panels(result_dir, summary, pairs, "networks_roundoff.png", 2)
 
 
 if __name__ == "__main__":
