@@ -135,8 +135,15 @@ void HydroMechanicalCoupling::form_sensitivity(const dda::BlockSystem& system, c
   else ++stats_.sensitivity_builds;
   stats_.response_columns_solved += static_cast<int>(to_solve.size());
 
+  // Every kept column where it was (the network grew by new nodes at the end, or did
+  // not change): X is extended where it is, without a second copy of it.
+  bool in_place = keep && response_version_ >= 0 && responses_.cols() <= n;
+  for (int i = 0; in_place && i < n; ++i) in_place = kept_column[i] == i || kept_column[i] < 0;
   Eigen::MatrixXd x_new;
-  if (keep) {
+  if (in_place) {
+    if (responses_.cols() < n) responses_.conservativeResize(Eigen::NoChange, n);
+    x_new.swap(responses_);
+  } else if (keep) {
     x_new.resize(rows, n);
     for (int i = 0; i < n; ++i)
       if (kept_column[i] >= 0) x_new.col(i) = responses_.col(kept_column[i]);
@@ -203,8 +210,8 @@ bool HydroMechanicalCoupling::update_responses(const dda::BlockSystem& system) {
         ytb.col(i).noalias() += y.middleRows<6>(6 * l.block).transpose() * l.force;
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(nmat);
     if (!(lu.rcond() > 1e-14)) return false;  // the new K singular where the springs act
-    const Eigen::MatrixXd correction = y * lu.solve(ytb);
-    responses_ -= correction;
+    const Eigen::MatrixXd coefficients = lu.solve(ytb);  // N^-1 Y^T B, r x n
+    responses_.noalias() -= y * coefficients;           // no temporary of X's size
     // Checked like a corrected factorisation (dda/low_rank_updates.cpp): K X v = B v.
     Eigen::VectorXd bv = Eigen::VectorXd::Zero(rows);
     for (int i = 0; i < n; ++i)
@@ -212,12 +219,13 @@ bool HydroMechanicalCoupling::update_responses(const dda::BlockSystem& system) {
     const Eigen::VectorXd xv = responses_.rowwise().sum();
     const double residual = (system.stiffness().multiply(xv) - bv).norm() / bv.norm();
     if (!(residual <= kResponseResidual)) return false;
-    // For tests: how far the update moved S (the rows of the gaps X was last used with).
-    double moved = 0.0;
-    for (const auto& g : gaps_)
-      for (int i = 0; i < n; ++i)
-        moved = std::max(moved, std::abs(g.row_a.dot(correction.col(i).segment<6>(6 * g.block_a)) +
-                                         g.row_b.dot(correction.col(i).segment<6>(6 * g.block_b))));
+    // For tests: how far the update moved S, max |J Y N^-1 Y^T B|.
+    Eigen::MatrixXd jy(static_cast<Eigen::Index>(gaps_.size()), r);
+    for (std::size_t e = 0; e < gaps_.size(); ++e) {
+      const auto& g = gaps_[e];
+      jy.row(static_cast<Eigen::Index>(e)) = g.row_a * y.middleRows<6>(6 * g.block_a) + g.row_b * y.middleRows<6>(6 * g.block_b);
+    }
+    const double moved = gaps_.empty() ? 0.0 : (jy * coefficients).cwiseAbs().maxCoeff();
     const double scale = sensitivity_.size() > 0 ? sensitivity_.cwiseAbs().maxCoeff() : 0.0;
     last_update_size_ = scale > 0.0 ? moved / scale : 0.0;
   }

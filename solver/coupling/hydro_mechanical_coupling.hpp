@@ -81,10 +81,11 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   /// changed in K, relative to the largest of S (0 when the last prepare made none).
   double last_update_size() const { return last_update_size_; }
 
-  /// X = K^-1 B is kept while it takes at most this many bytes (a network of 1,000
-  /// nodes on 12,800 blocks: 0.6 GB); larger networks have S formed column block by
-  /// column block and the displacements solved, as before X was kept.
-  static constexpr double kMaxResponseBytes = 512.0 * 1024 * 1024;
+  /// X = K^-1 B is kept while it takes at most this many bytes (600 nodes on 7,700
+  /// blocks: 0.22 GB); a prepare that changes its columns holds the old and the new X
+  /// for a moment, twice this. Larger networks have S formed column block by column
+  /// block and the displacements solved, as before X was kept.
+  static constexpr double kMaxResponseBytes = 256.0 * 1024 * 1024;
   /// |K X v - B v| / |B v| (v all ones) above which an updated X is dropped and solved
   /// anew: the bound of a corrected factorisation (dda::BlockSystem::kLowRankResidual).
   static constexpr double kResponseResidual = 1e-7;
