@@ -189,14 +189,16 @@ bool HydroMechanicalCoupling::update_responses(const dda::BlockSystem& system) {
     const int rows = static_cast<int>(responses_.rows());
     // K_new = K_old + C D C^T, column s of C: sqrt(|k_s|) e_s, D = sign(k_s). With
     // Y = K_new^-1 C: K_new^-1 = K_old^-1 - Y N^-1 Y^T, N = D - C^T Y.
-    Eigen::MatrixXd c = Eigen::MatrixXd::Zero(rows, r);
-    for (int k = 0; k < r; ++k) {
-      const dda::SpringTerm& t = changes[k];
-      const double scale = std::sqrt(std::abs(t.stiffness));
-      c.col(k).segment<6>(6 * t.block_a) += scale * t.row_a.transpose();
-      c.col(k).segment<6>(6 * t.block_b) += scale * t.row_b.transpose();
-    }
-    const Eigen::MatrixXd y = system.solver().solve(c);
+    const Eigen::MatrixXd y = [&] {
+      Eigen::MatrixXd c = Eigen::MatrixXd::Zero(rows, r);  // freed once Y is solved
+      for (int k = 0; k < r; ++k) {
+        const dda::SpringTerm& t = changes[k];
+        const double scale = std::sqrt(std::abs(t.stiffness));
+        c.col(k).segment<6>(6 * t.block_a) += scale * t.row_a.transpose();
+        c.col(k).segment<6>(6 * t.block_b) += scale * t.row_b.transpose();
+      }
+      return system.solver().solve(c);
+    }();
     Eigen::MatrixXd nmat(r, r);
     for (int k = 0; k < r; ++k) {
       const dda::SpringTerm& t = changes[k];

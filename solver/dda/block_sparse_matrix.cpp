@@ -315,8 +315,28 @@ const double* SpdSolver::solve_factor_in_place(const double* rhs, int rows, int 
 }
 
 Eigen::MatrixXd SpdSolver::solve_factor(const Eigen::MatrixXd& rhs) const {
-  const double* x = solve_factor_in_place(rhs.data(), static_cast<int>(rhs.rows()), static_cast<int>(rhs.cols()));
-  return Eigen::Map<const Eigen::MatrixXd>(x, rhs.rows(), rhs.cols());
+  if (rhs.cols() == 1) {
+    const double* x = solve_factor_in_place(rhs.data(), static_cast<int>(rhs.rows()), 1);
+    return Eigen::Map<const Eigen::MatrixXd>(x, rhs.rows(), 1);
+  }
+  // Several columns: a workspace for this solve only, so that the one kept for the
+  // single solves of the contact iterations does not grow to the widest block solved.
+  Cholmod& c = *cholmod_;
+  cholmod_dense b{};
+  b.nrow = b.d = static_cast<std::size_t>(rhs.rows());
+  b.ncol = static_cast<std::size_t>(rhs.cols());
+  b.nzmax = b.nrow * b.ncol;
+  b.x = const_cast<double*>(rhs.data());
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
+  const bool ok = cholmod_solve2(CHOLMOD_A, c.active(), &b, nullptr, &x, nullptr, &y, &e, &c.common);
+  Eigen::MatrixXd result;
+  if (ok) result = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(x->x), rhs.rows(), rhs.cols());
+  for (cholmod_dense** d : {&x, &y, &e})
+    if (*d) cholmod_free_dense(d, &c.common);
+  if (!ok) throw std::runtime_error("CHOLMOD's solve failed");
+  return result;
 }
 
 Eigen::VectorXd SpdSolver::solve(const Eigen::VectorXd& rhs) const {
