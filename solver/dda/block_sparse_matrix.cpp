@@ -124,6 +124,18 @@ cholmod_sparse view_lower(const Eigen::SparseMatrix<double>& lower) {
   return a;
 }
 
+/// CHOLMOD's view of a column-major dense block (no copy).
+cholmod_dense view_dense(const double* data, int rows, int cols) {
+  cholmod_dense d{};
+  d.nrow = d.d = static_cast<std::size_t>(rows);
+  d.ncol = static_cast<std::size_t>(cols);
+  d.nzmax = d.nrow * d.ncol;
+  d.x = const_cast<double*>(data);
+  d.xtype = CHOLMOD_REAL;
+  d.dtype = CHOLMOD_DOUBLE;
+  return d;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -300,15 +312,9 @@ std::size_t SpdSolver::factor_entries() const {
   return f->is_super ? f->xsize : f->nzmax;
 }
 
-const double* SpdSolver::solve_factor_in_place(const double* rhs, int rows, int cols) const {
+const double* SpdSolver::solve_factor_in_place(const double* rhs, int rows) const {
   Cholmod& c = *cholmod_;
-  cholmod_dense b{};
-  b.nrow = b.d = static_cast<std::size_t>(rows);
-  b.ncol = static_cast<std::size_t>(cols);
-  b.nzmax = b.nrow * b.ncol;
-  b.x = const_cast<double*>(rhs);
-  b.xtype = CHOLMOD_REAL;
-  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense b = view_dense(rhs, rows, 1);
   if (!cholmod_solve2(CHOLMOD_A, c.active(), &b, nullptr, &c.solution, nullptr, &c.work_y, &c.work_e, &c.common))
     throw std::runtime_error("CHOLMOD's solve failed");
   return static_cast<const double*>(c.solution->x);
@@ -316,19 +322,13 @@ const double* SpdSolver::solve_factor_in_place(const double* rhs, int rows, int 
 
 Eigen::MatrixXd SpdSolver::solve_factor(const Eigen::MatrixXd& rhs) const {
   if (rhs.cols() == 1) {
-    const double* x = solve_factor_in_place(rhs.data(), static_cast<int>(rhs.rows()), 1);
+    const double* x = solve_factor_in_place(rhs.data(), static_cast<int>(rhs.rows()));
     return Eigen::Map<const Eigen::MatrixXd>(x, rhs.rows(), 1);
   }
   // Several columns: a workspace for this solve only, so that the one kept for the
   // single solves of the contact iterations does not grow to the widest block solved.
   Cholmod& c = *cholmod_;
-  cholmod_dense b{};
-  b.nrow = b.d = static_cast<std::size_t>(rhs.rows());
-  b.ncol = static_cast<std::size_t>(rhs.cols());
-  b.nzmax = b.nrow * b.ncol;
-  b.x = const_cast<double*>(rhs.data());
-  b.xtype = CHOLMOD_REAL;
-  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense b = view_dense(rhs.data(), static_cast<int>(rhs.rows()), static_cast<int>(rhs.cols()));
   cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
   const bool ok = cholmod_solve2(CHOLMOD_A, c.active(), &b, nullptr, &x, nullptr, &y, &e, &c.common);
   Eigen::MatrixXd result;
@@ -340,7 +340,7 @@ Eigen::MatrixXd SpdSolver::solve_factor(const Eigen::MatrixXd& rhs) const {
 }
 
 Eigen::VectorXd SpdSolver::solve(const Eigen::VectorXd& rhs) const {
-  const double* x = solve_factor_in_place(rhs.data(), static_cast<int>(rhs.size()), 1);
+  const double* x = solve_factor_in_place(rhs.data(), static_cast<int>(rhs.size()));
   Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(x, rhs.size());
   if (woodbury_solutions_.cols() > 0) y.noalias() -= woodbury_solutions_ * capacitance_lu_.solve(spring_projection(y));
   return y;

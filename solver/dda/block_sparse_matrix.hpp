@@ -130,8 +130,8 @@ class SpdSolver {
   /// C^T y for the modified springs (column s of C: sqrt(|k_s|) e_s).
   Eigen::MatrixXd spring_projection(const Eigen::MatrixXd& y) const;
   Eigen::MatrixXd solve_factor(const Eigen::MatrixXd& rhs) const;
-  /// K0^-1 rhs (rows x cols, column-major) into the kept solution block; valid until the next solve.
-  const double* solve_factor_in_place(const double* rhs, int rows, int cols) const;
+  /// K0^-1 rhs for one right-hand side, into the kept solution vector; valid until the next solve.
+  const double* solve_factor_in_place(const double* rhs, int rows) const;
 };
 
 }  // namespace hfdda::dda
