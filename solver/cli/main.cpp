@@ -1,5 +1,5 @@
 // hfdda: command-line front end.
-//   hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--force | --restart]
+//   hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--trace-iterations] [--force | --restart]
 //   hfdda check CASE.yaml                      validate the case and build its mesh
 //   hfdda plot DIR [--times ...] [--out ...]   figures of a run directory (hfdda_plot.py)
 //   hfdda network CASE.yaml --out DIR [--force] [--no-figure]
@@ -36,7 +36,7 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--force | --restart]\n"
+    "usage: hfdda run CASE.yaml --out DIR [--quiet] [--threads N] [--checkpoint-every N] [--trace-iterations] [--force | --restart]\n"
     "       hfdda check CASE.yaml\n"
     "       hfdda plot DIR [--times T1,T2,...] [--out FIGDIR]\n"
     "       hfdda network CASE.yaml --out DIR [--force] [--no-figure]\n"
@@ -50,6 +50,8 @@ constexpr const char* kUsage =
     "       --threads N: threads of the sparse factorisation (default: HFDDA_THREADS, else 1).\n"
     "       A DIR that holds a previous run is refused; --force empties it first.\n"
     "       --checkpoint-every N: write DIR/checkpoint.bin every N steps (default 10; 0: never).\n"
+    "       --trace-iterations: also write DIR/iterations.csv, a row per open-close iteration of every\n"
+    "       attempt at a step and per attempt's end (committed, or refused and cut, and why).\n"
     "       SIGINT or SIGTERM: the current step is finished, a checkpoint written, exit 3.\n"
     "       --restart: continue the run in DIR from its checkpoint (same case file), with\n"
     "       the same results as a run that was never stopped.\n"
@@ -162,7 +164,7 @@ bool whole_number(const std::string& value, int min) {
 
 int run_command(int argc, char** argv, bool check_only) {
   std::string case_file, out_dir;
-  bool quiet = false, force = false, restart = false;
+  bool quiet = false, force = false, restart = false, trace_iterations = false;
   int checkpoint_every = 10;
   int threads = hfdda::dda::threads_from_environment();
   for (int i = 2; i < argc; ++i) {
@@ -180,6 +182,7 @@ int run_command(int argc, char** argv, bool check_only) {
       checkpoint_every = std::stoi(value);
     }
     else if (arg == "--force") force = true;
+    else if (arg == "--trace-iterations") trace_iterations = true;
     else if (arg == "--restart") restart = true;
     else if (arg == "--quiet" || arg == "-q") quiet = true;
     else if (!arg.empty() && arg[0] == '-') return usage_error("unknown option '" + arg + "'");
@@ -225,6 +228,7 @@ int run_command(int argc, char** argv, bool check_only) {
   hfdda::simulation::RunOptions options{out_dir, quiet, true};
   options.checkpoint_every = checkpoint_every;
   options.restart = restart;
+  options.trace_iterations = trace_iterations;
   options.stop_requested = hfdda::cli::stop_requested;
   hfdda::cli::catch_stop_signals();
   const auto result = hfdda::simulation::run(model, options);

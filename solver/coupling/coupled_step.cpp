@@ -52,9 +52,12 @@ StepStatistics CoupledStep::advance(double dt_s, int max_step_cuts) {
 
 void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats) {
   try {
-    stats.accumulate(attempt(dt_s));
+    const StepStatistics attempt_stats = attempt(dt_s);
+    if (observer_) observer_->attempt_ended(dt_s, attempt_stats.open_close_iterations, {});
+    stats.accumulate(attempt_stats);
     committed_s_ += dt_s;
   } catch (const ConvergenceError& e) {
+    if (observer_) observer_->attempt_ended(dt_s, attempt_iterations_, e.what());
     if (cuts_left <= 0) throw;
     ++stats.step_cuts;
     if (trace_cuts_) std::fprintf(stderr, "step of %g s cut: %s\n", dt_s, e.what());
@@ -66,6 +69,8 @@ void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats
 StepStatistics CoupledStep::attempt(double dt_s) {
   const auto step_start = Clock::now();
   StepStatistics stats;
+  attempt_dt_s_ = dt_s;
+  attempt_iterations_ = 0;
   try {
     const auto start = Clock::now();
     mechanics_.begin_step(dt_s);
@@ -117,6 +122,26 @@ void CoupledStep::reject_crushed_blocks(const Eigen::VectorXd& d, StepStatistics
   throw ConvergenceError(msg.str());
 }
 
+void CoupledStep::report_iteration(double dt_s, int iteration, int contact_changes, int coupled_changes,
+                                   const StepStatistics& stats, const Eigen::VectorXd& d) const {
+  IterationRecord r;
+  r.attempt_dt_s = dt_s;
+  r.iteration = iteration;
+  r.contact_changes = contact_changes;
+  r.coupled_changes = coupled_changes;
+  r.bonds_broken = stats.bonds_broken;
+  r.cycle_holds = stats.cycle_holds;
+  r.mechanism_blocks = stats.max_mechanism_blocks;
+  const dda::BlockSystem::FaceOverlap overlap = mechanics_.largest_face_overlap(d);
+  r.overlap_fraction = overlap.joint >= 0 ? overlap.fraction_of_length : 0.0;
+  r.overlap_joint = overlap.joint;
+  const dda::BlockSystem::BlockStrain strain = mechanics_.largest_step_strain(d);
+  r.block_strain = strain.block >= 0 ? strain.strain : 0.0;
+  r.strain_block = strain.block;
+  if (contact_changes > 0) r.first_change = mechanics_.first_change();
+  observer_->iteration(r);
+}
+
 Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {
   const int max_iterations = mechanics_.settings().max_open_close_iterations;
   bool stiffness_changed = true;
@@ -134,6 +159,8 @@ Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {
     int coupled_changes = 0;
     for (FluidLoadModel* f : fluids_) coupled_changes += f->update_states(mechanics_);
     stats.coupled_state_changes += coupled_changes;
+    attempt_iterations_ = oc;
+    if (observer_) report_iteration(attempt_dt_s_, oc, contact_changes, coupled_changes, stats, d);
     if (contact_changes + coupled_changes == 0) {
       if (stats.cycle_holds > 0) stats.steps_with_cycles = 1;
       return d;

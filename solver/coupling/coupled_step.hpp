@@ -15,6 +15,7 @@
 #include "core/step_statistics.hpp"
 #include "coupling/bond_list.hpp"
 #include "coupling/fluid_load_model.hpp"
+#include "coupling/iteration_observer.hpp"
 #include "dda/block_system.hpp"
 #include "fracture/fracture_criteria.hpp"
 
@@ -36,11 +37,17 @@ class CoupledStep {
   /// the sum of the sub-steps that converged before the one that failed (0 if none did),
   /// so that a run stopped there can say which time its state is at.
   double committed_time_s() const { return committed_s_; }
+  /// Reports every open-close iteration and every attempt's end to `observer` (nullptr:
+  /// nobody; the default). The observer must outlive its use; observing costs one pass
+  /// over the joints and blocks per iteration.
+  void observe_iterations(IterationObserver* observer) { observer_ = observer; }
   /// The intact bonds of the mechanics (also read by the load ramp).
   const BondList& bonds() const { return bonds_; }
 
  private:
   void advance_into(double dt_s, int cuts_left, StepStatistics& stats);
+  void report_iteration(double dt_s, int iteration, int contact_changes, int coupled_changes, const StepStatistics& stats,
+                        const Eigen::VectorXd& d) const;
   /// One step without cut-back; throws ConvergenceError after rolling everything back.
   StepStatistics attempt(double dt_s);
   /// Throws ConvergenceError (the step is cut) where the iterations ended with two
@@ -70,6 +77,9 @@ class CoupledStep {
   std::vector<FluidLoadModel*> fluids_;
   fracture::FractureRules rules_;
   bool trace_cuts_;
+  IterationObserver* observer_ = nullptr;
+  double attempt_dt_s_ = 0.0;   // time step of the current attempt [s]
+  int attempt_iterations_ = 0;  // open-close iterations of the current attempt so far
   double committed_s_ = 0.0;  // time committed by the current or last advance() [s]
   BondList bonds_;
   std::vector<char> pressurised_;                      // union of the fluids' masks

@@ -7,6 +7,8 @@
 //   joints/joints_NNNNNN.csv  per-joint state at output times; joints/joints_final.csv
 //   vtu/blocks_NNNNNN.vtu, vtu/joints_NNNNNN.vtu with blocks.pvd and joints.pvd series
 //   checkpoint.bin            state to restart from (simulation/checkpoint.hpp)
+//   iterations.csv            with --trace-iterations: a row per open-close iteration and per
+//                             attempt at a step (simulation/iteration_trace.hpp)
 // Every file is written to a temporary name and renamed, so none is ever half-written;
 // history.csv is created that way and then appended one whole line per write.
 

@@ -16,6 +16,7 @@
 #include "io/output.hpp"
 #include "simulation/checkpoint.hpp"
 #include "simulation/field_checks.hpp"
+#include "simulation/iteration_trace.hpp"
 #include "simulation/run_record.hpp"
 #include "simulation/snapshots.hpp"
 #include "simulation/stop_conditions.hpp"
@@ -173,6 +174,15 @@ RunResult run(Model& model, const RunOptions& options) {
   }
   std::optional<io::HistoryCsv> history;
   if (files) history.emplace(options.output_dir + "/history.csv", names, kept_rows);
+  std::optional<IterationTrace> trace;
+  if (files && options.trace_iterations) {
+    trace.emplace(options.output_dir + "/iterations.csv", options.restart);
+    model.step->observe_iterations(&*trace);
+  }
+  struct StopObserving {  // the trace ends with the run, even when a step throws
+    Model& model;
+    ~StopObserving() { model.step->observe_iterations(nullptr); }
+  } stop_observing{model};
   auto checkpoint = [&] {
     RunProgress p{result.steps, result.time_s, wall_before + std::chrono::duration<double>(Clock::now() - start).count(),
                   result.totals, result.record, outputs.blocks_pvd.entries(), outputs.joints_pvd.entries()};
@@ -189,6 +199,7 @@ RunResult run(Model& model, const RunOptions& options) {
     const double t = step * time.dt_s;
     if (ramp) model.system->set_load_level(ramp->next_level());
     StepStatistics st;
+    if (trace) trace->begin_step(step, t - time.dt_s);
     try {
       st = model.step->advance(time.dt_s, model.config.numerics.max_step_cuts);
       check_fields_finite(*model.system, model.flow.get(), step);

@@ -24,6 +24,9 @@ struct RunOptions {
   /// false: nothing is written (no directory, history, joints, VTU, summary or
   /// checkpoint); the rows stay in RunResult::record. An ensemble realisation runs so.
   bool write_files = true;
+  /// Also write DIR/iterations.csv, a row per open-close iteration and per attempt
+  /// (simulation/iteration_trace.hpp); needs write_files.
+  bool trace_iterations = false;
   /// Called after every completed step with the model at its end, the step and the time.
   std::function<void(const Model&, int step, double time_s)> after_step{};
 };
