@@ -95,7 +95,7 @@ const Table<NumericsConfig>& numerics_table() {
        choice({"cycle_resolution", "", "§5.1: most_open",
                "how a contact caught in a cycle is held: most_open (the seed's rule: its most open state "
                "of the step), close_penetrating (the same, except that a joint contact whose faces would "
-               "then pass through each other by more than 1e-3 of the joint's length is closed and held "
+               "then pass through each other by more than 1e-5 of the joint's length is closed and held "
                "sliding; not in the seed)"},
               &NumericsConfig::cycle_resolution,
               Choices<CycleResolution>{{"most_open", CycleResolution::most_open},

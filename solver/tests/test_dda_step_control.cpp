@@ -234,6 +234,18 @@ TEST(DdaCycles, CycleHeldOpenThroughClosedFacesClosesWhenAskedTo) {
   EXPECT_LT(std::abs(mean_x(*system, right) - right_x0), 1e-3);
 }
 
+TEST(DdaCycles, HeldOpenContactClosesAboveTheElasticPenetrationOfAClosedOne) {
+  // The bound is 1e-5 of the joint's length (design notes section 39): a cycle-held
+  // contact whose faces would pass 1e-4 of its 1 m joint through each other is closed,
+  // one at 1e-6 is left open as the seed's rule holds it.
+  for (const double penetration_m : {1e-4, 1e-6}) {
+    const auto system = free_block_beside_fixed(-kPushOf1_2m * penetration_m / 1.2, 1e6, true);
+    ASSERT_NO_THROW(step(*system, 1.0));
+    const ContactState state = system->contacts()[system->joint_contacts(0)[0]].state;
+    EXPECT_EQ(state, penetration_m > 1e-5 ? ContactState::sliding : ContactState::open) << penetration_m << " m";
+  }
+}
+
 /// The free block pulled away (+x) by 1 kN for one static step of 1 s; how far it
 /// moved [m].
 double free_block_pull(double mechanism_inertia_time_s, std::vector<int>* mechanism = nullptr) {
