@@ -7,7 +7,11 @@ Run by the hfdda CLI with Debian's /usr/bin/python3 (matplotlib Agg, numpy). Wri
       fractures thin black, joints with an open end thick dark grey, joints holding fluid
       without being open thick light grey;
   FIGDIR/histories.png  inlet pressure, opened and invaded lengths per joint kind, and the
-      fluid mass check over time (the panels whose columns the run has).
+      fluid mass check over time (the panels whose columns the run has);
+  FIGDIR/iterations.png  for a run made with --trace-iterations (DIR/iterations.csv): every
+      open-close iteration in order, its changes, the trial's worst joint overlap and block
+      strain against the guards, the cycle holds and bonds broken, each attempt's end marked
+      (grey: committed, red: refused and cut).
 FIGDIR defaults to DIR/figures. Prints each file written. Exit 2 on a directory that is
 not a run directory.
 """
@@ -132,7 +136,52 @@ def main(argv):
         fig.savefig(name, dpi=120)
         plt.close(fig)
         print(name)
+    iterations_path = os.path.join(run_dir, "iterations.csv")
+    if os.path.isfile(iterations_path):
+        name = draw_iterations(read_rows(iterations_path), out_dir)
+        if name:
+            print(name)
     return 0
+
+
+def draw_iterations(rows, out_dir):
+    """iterations.png from the rows of iterations.csv; None if it holds no iteration."""
+    its = [r for r in rows if r["row"] == "iteration"]
+    if not its:
+        return None
+    x = list(range(1, len(its) + 1))
+    value = lambda column: [float(r[column]) for r in its]
+    fig, axes = plt.subplots(3, 1, figsize=(9, 7.5), sharex=True)
+    axes[0].plot(x, value("contact_changes"), lw=0.8, label="contact changes")
+    axes[0].plot(x, value("coupled_changes"), lw=0.8, label="fluid changes")
+    axes[0].set_yscale("symlog", linthresh=1.0)
+    axes[0].set_ylabel("changes applied")
+    floor = 1e-12  # log axes: a zero is drawn at the floor
+    axes[1].semilogy(x, [max(v, floor) for v in value("overlap_fraction")], lw=0.8, label="joint overlap / joint length")
+    axes[1].semilogy(x, [max(v, floor) for v in value("block_strain")], lw=0.8, label="block strain")
+    axes[1].axhline(0.1, color="r", ls="--", lw=0.6, label="guards (0.1)")
+    axes[1].set_ylabel("trial's worst")
+    axes[2].plot(x, value("cycle_holds"), lw=0.8, label="cycle holds")
+    axes[2].plot(x, value("bonds_broken"), lw=0.8, label="bonds broken")
+    axes[2].set_ylabel("in the attempt so far")
+    # Attempt ends: after the last iteration row that precedes each attempt row.
+    count = 0
+    for r in rows:
+        if r["row"] == "iteration":
+            count += 1
+        elif count > 0:
+            refused = r["text"] != "committed"
+            for ax in axes:
+                ax.axvline(count + 0.5, color="r" if refused else "0.8", lw=0.8 if refused else 0.4, zorder=0)
+    for ax in axes:
+        ax.legend(fontsize=7, loc="upper left")
+    steps = sorted({int(r["step"]) for r in its})
+    axes[-1].set_xlabel(f"open-close iteration, in order (steps {steps[0]}-{steps[-1]})")
+    name = os.path.join(out_dir, "iterations.png")
+    fig.tight_layout()
+    fig.savefig(name, dpi=120)
+    plt.close(fig)
+    return name
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
-# `hfdda plot` on a run directory: the map at two times and the histories are written as
-# non-empty PNG files and listed; a directory that is not a run is refused with exit 2.
+# `hfdda plot` on a run directory: the map at two times, the histories and (the run traced
+# with --trace-iterations) the iterations are written as non-empty PNG files and listed; a directory that is not a run is refused with exit 2.
 file(REMOVE_RECURSE "${OUT}")
-execute_process(COMMAND "${HFDDA}" run "${CASE}" --out "${OUT}/run" --quiet RESULT_VARIABLE code ERROR_VARIABLE err)
+execute_process(COMMAND "${HFDDA}" run "${CASE}" --out "${OUT}/run" --quiet --trace-iterations
+                RESULT_VARIABLE code ERROR_VARIABLE err)
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "run: exit ${code}: ${err}")
 endif()
@@ -12,10 +13,10 @@ if(NOT code EQUAL 0)
 endif()
 file(GLOB maps "${OUT}/figures/fracture_map_t*.png")
 list(LENGTH maps n_maps)
-if(NOT n_maps EQUAL 2 OR NOT EXISTS "${OUT}/figures/histories.png")
-  message(FATAL_ERROR "plot: expected two maps and histories.png, got ${maps}; printed: ${listed}")
+if(NOT n_maps EQUAL 2 OR NOT EXISTS "${OUT}/figures/histories.png" OR NOT EXISTS "${OUT}/figures/iterations.png")
+  message(FATAL_ERROR "plot: expected two maps, histories.png and iterations.png, got ${maps}; printed: ${listed}")
 endif()
-foreach(png IN LISTS maps ITEMS "${OUT}/figures/histories.png")
+foreach(png IN LISTS maps ITEMS "${OUT}/figures/histories.png" "${OUT}/figures/iterations.png")
   file(SIZE "${png}" size)
   if(size LESS 1000)
     message(FATAL_ERROR "plot: ${png} has only ${size} bytes")
