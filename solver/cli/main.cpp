@@ -242,6 +242,9 @@ int run_command(int argc, char** argv, bool check_only) {
   if (!result.completed) {
     std::fprintf(stderr, "hfdda: run stopped at %s\nhfdda: outputs up to t = %g s are in %s\n", result.message.c_str(),
                  result.time_s, out_dir.c_str());
+    if (!trace_iterations)
+      std::fprintf(stderr, "hfdda: to see how the step's open-close iterations went, run again with --trace-iterations "
+                           "(DIR/iterations.csv; `hfdda plot DIR` draws it)\n");
     return 1;
   }
   if (!quiet) {

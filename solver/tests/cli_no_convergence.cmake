@@ -17,3 +17,21 @@ file(READ "${OUT}/summary.json" summary)
 if(NOT summary MATCHES "\"status\": \"failed\"")
   message(FATAL_ERROR "summary.json does not record the failure")
 endif()
+
+# The stop suggests the iteration trace; with it, iterations.csv records the refused
+# attempts with their reason, and the hint is not repeated.
+if(NOT err MATCHES "run again with --trace-iterations")
+  message(FATAL_ERROR "the stop does not point to --trace-iterations: ${err}")
+endif()
+execute_process(COMMAND "${HFDDA}" run "${CASE}" --out "${OUT}" --quiet --force --trace-iterations
+                RESULT_VARIABLE code ERROR_VARIABLE err)
+if(NOT code EQUAL 1 OR err MATCHES "run again with --trace-iterations")
+  message(FATAL_ERROR "traced run: expected exit code 1 without the hint, got ${code}: ${err}")
+endif()
+file(STRINGS "${OUT}/iterations.csv" refused REGEX ",attempt,[0-9]+,.*open-close iterations did not converge")
+list(LENGTH refused n_refused)
+file(STRINGS "${OUT}/iterations.csv" iteration_rows REGEX ",iteration,")
+list(LENGTH iteration_rows n_iterations)
+if(n_refused LESS 1 OR n_iterations LESS 1)
+  message(FATAL_ERROR "iterations.csv: ${n_iterations} iteration rows, ${n_refused} refused attempts")
+endif()
