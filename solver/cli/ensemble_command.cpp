@@ -23,7 +23,7 @@ namespace {
 constexpr const char* kEnsembleUsage =
     "usage: [mpirun -n N] hfdda ensemble CASE.yaml --out DIR [--shard K/N] [--force] [--quiet] [--threads N]\n"
     "                                   [--no-figures]\n"
-    "       hfdda ensemble CASE.yaml --realisation I --out DIR [--force] [--quiet]\n"
+    "       hfdda ensemble CASE.yaml --realisation I --out DIR [--force] [--quiet] [--trace-iterations]\n"
     "       hfdda ensemble merge --out DIR SOURCE_DIR... [--no-figures]\n"
     "\n"
     "Runs the realisations of the case's `ensemble` section (docs/ensembles.md), each written\n"
@@ -37,7 +37,8 @@ constexpr const char* kEnsembleUsage =
     "then `hfdda ensemble merge --out DIR SHARD_DIR...` writes the maps over all of them.\n"
     "--threads N: threads per process (default: HFDDA_THREADS, else 1; keep 1 under mpirun).\n"
     "--realisation I: run realisation I alone, as `hfdda run` would, writing every output file\n"
-    "(history.csv, joints, VTU, summary.json) to DIR: to look into one that failed.\n";
+    "(history.csv, joints, VTU, summary.json) to DIR: to look into one that failed; with\n"
+    "--trace-iterations also DIR/iterations.csv, as `hfdda run --trace-iterations` writes it.\n";
 
 int usage(const std::string& message) {
   std::fprintf(stderr, "hfdda ensemble: %s\n%s", message.c_str(), kEnsembleUsage);
@@ -108,7 +109,8 @@ std::string empty_directory(const std::string& dir, const std::string& case_file
 }
 
 /// `--realisation I`: one realisation with the outputs of `hfdda run` (exit codes as run's).
-int run_one_realisation(const io::CaseConfig& config, long index, const std::string& out_dir, bool quiet) {
+int run_one_realisation(const io::CaseConfig& config, long index, const std::string& out_dir, bool quiet,
+                        bool trace_iterations) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (fs::exists(out_dir + "/summary.json", ec) || fs::exists(out_dir + "/history.csv", ec)) {
@@ -119,6 +121,7 @@ int run_one_realisation(const io::CaseConfig& config, long index, const std::str
   simulation::RunOptions options;
   options.output_dir = out_dir;
   options.quiet = quiet;
+  options.trace_iterations = trace_iterations;
   options.stop_requested = stop_requested;
   catch_stop_signals();
   const simulation::RunResult result = simulation::run(model, options);
@@ -137,7 +140,7 @@ int run_ensemble(int argc, char** argv, const ProcessGroup& group) {
   std::string case_file, out_dir;
   long only = -1;
   ensemble::Shard shard;
-  bool force = false, quiet = false, figures = true;
+  bool force = false, quiet = false, figures = true, trace_iterations = false;
   int threads = dda::threads_from_environment();
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -159,12 +162,14 @@ int run_ensemble(int argc, char** argv, const ProcessGroup& group) {
     } else if (arg == "--force") force = true;
     else if (arg == "--quiet" || arg == "-q") quiet = true;
     else if (arg == "--no-figures") figures = false;
+    else if (arg == "--trace-iterations") trace_iterations = true;
     else if (!arg.empty() && arg[0] == '-') return usage("unknown option '" + arg + "'");
     else if (case_file.empty()) case_file = arg;
     else return usage("more than one case file given");
   }
   if (case_file.empty()) return usage("no case file given");
   if (out_dir.empty()) return usage("ensemble needs --out DIR");
+  if (trace_iterations && only < 0) return usage("--trace-iterations goes with --realisation I (one realisation)");
   const bool lead = group.rank == 0;
   const std::string thread_note = dda::apply_thread_policy(threads);
   core::retain_freed_memory();
@@ -180,7 +185,7 @@ int run_ensemble(int argc, char** argv, const ProcessGroup& group) {
       const std::string problem = empty_directory(out_dir, case_file);
       if (!problem.empty()) return usage(problem);
     }
-    return run_one_realisation(config, only, out_dir, quiet);
+    return run_one_realisation(config, only, out_dir, quiet, trace_iterations);
   }
   const ensemble::EnsembleGeometry geometry = ensemble::ensemble_geometry(config);
   const ensemble::EnsembleManifest manifest = ensemble::make_manifest(config, geometry, shard);
