@@ -52,9 +52,8 @@ StepStatistics CoupledStep::advance(double dt_s, int max_step_cuts) {
 
 void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats) {
   try {
-    const StepStatistics attempt_stats = attempt(dt_s);
-    if (observer_) observer_->attempt_ended(dt_s, attempt_stats.open_close_iterations, {});
-    stats.accumulate(attempt_stats);
+    stats.accumulate(attempt(dt_s));
+    if (observer_) observer_->attempt_ended(dt_s, attempt_iterations_, {});
     committed_s_ += dt_s;
   } catch (const ConvergenceError& e) {
     if (observer_) observer_->attempt_ended(dt_s, attempt_iterations_, e.what());
@@ -122,10 +121,10 @@ void CoupledStep::reject_crushed_blocks(const Eigen::VectorXd& d, StepStatistics
   throw ConvergenceError(msg.str());
 }
 
-void CoupledStep::report_iteration(double dt_s, int iteration, int contact_changes, int coupled_changes,
-                                   const StepStatistics& stats, const Eigen::VectorXd& d) const {
+void CoupledStep::report_iteration(int iteration, int contact_changes, int coupled_changes, const StepStatistics& stats,
+                                   const Eigen::VectorXd& d) const {
   IterationRecord r;
-  r.attempt_dt_s = dt_s;
+  r.attempt_dt_s = attempt_dt_s_;
   r.iteration = iteration;
   r.contact_changes = contact_changes;
   r.coupled_changes = coupled_changes;
@@ -160,7 +159,7 @@ Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {
     for (FluidLoadModel* f : fluids_) coupled_changes += f->update_states(mechanics_);
     stats.coupled_state_changes += coupled_changes;
     attempt_iterations_ = oc;
-    if (observer_) report_iteration(attempt_dt_s_, oc, contact_changes, coupled_changes, stats, d);
+    if (observer_) report_iteration(oc, contact_changes, coupled_changes, stats, d);
     if (contact_changes + coupled_changes == 0) {
       if (stats.cycle_holds > 0) stats.steps_with_cycles = 1;
       return d;

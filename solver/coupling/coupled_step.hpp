@@ -46,7 +46,8 @@ class CoupledStep {
 
  private:
   void advance_into(double dt_s, int cuts_left, StepStatistics& stats);
-  void report_iteration(double dt_s, int iteration, int contact_changes, int coupled_changes, const StepStatistics& stats,
+  /// Tells the observer about open-close iteration `iteration` of the current attempt.
+  void report_iteration(int iteration, int contact_changes, int coupled_changes, const StepStatistics& stats,
                         const Eigen::VectorXd& d) const;
   /// One step without cut-back; throws ConvergenceError after rolling everything back.
   StepStatistics attempt(double dt_s);

@@ -2,9 +2,11 @@
 
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+
+#include "io/output.hpp"
 
 namespace hfdda::simulation {
 
@@ -27,12 +29,19 @@ std::string quoted(const std::string& text) {
 
 }  // namespace
 
-IterationTrace::IterationTrace(const std::string& path, bool append) : path_(path) {
-  const bool header = !append || !std::filesystem::exists(path);
+IterationTrace::IterationTrace(const std::string& path, int restarted_after) : path_(path) {
+  std::string kept = kHeader;
+  if (restarted_after >= 0) {
+    std::ifstream previous(path);
+    std::string line;
+    std::getline(previous, line);  // the header
+    while (std::getline(previous, line))
+      if (std::atoi(line.c_str()) <= restarted_after) kept += line + '\n';
+  }
+  io::write_file_atomically(path, kept);
   errno = 0;
-  out_.open(path, header ? std::ios::out | std::ios::trunc : std::ios::out | std::ios::app);
+  out_.open(path, std::ios::out | std::ios::app);
   if (!out_) throw std::runtime_error("cannot open '" + path + "': " + std::strerror(errno != 0 ? errno : EIO));
-  if (header) write(kHeader);
 }
 
 void IterationTrace::iteration(const coupling::IterationRecord& r) {

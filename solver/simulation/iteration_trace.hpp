@@ -19,8 +19,10 @@ namespace hfdda::simulation {
 
 class IterationTrace final : public coupling::IterationObserver {
  public:
-  /// Creates `path` with its header, or with `append` (a restarted run) adds to it.
-  IterationTrace(const std::string& path, bool append);
+  /// Creates `path` with its header; for a run restarted after step `restarted_after`
+  /// (>= 0) keeps the rows of the steps up to it that `path` holds and drops the later
+  /// ones, which the stopped run wrote after its checkpoint and the restart does again.
+  IterationTrace(const std::string& path, int restarted_after = -1);
   /// The step that the next iterations belong to and the time it starts at [s].
   void begin_step(int step, double start_s) {
     step_ = step;

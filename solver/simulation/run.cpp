@@ -176,7 +176,7 @@ RunResult run(Model& model, const RunOptions& options) {
   if (files) history.emplace(options.output_dir + "/history.csv", names, kept_rows);
   std::optional<IterationTrace> trace;
   if (files && options.trace_iterations) {
-    trace.emplace(options.output_dir + "/iterations.csv", options.restart);
+    trace.emplace(options.output_dir + "/iterations.csv", options.restart ? result.steps : -1);
     model.step->observe_iterations(&*trace);
   }
   struct StopObserving {  // the trace ends with the run, even when a step throws

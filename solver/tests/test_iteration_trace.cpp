@@ -42,20 +42,8 @@ class Recorder final : public coupling::IterationObserver {
   std::vector<coupling::IterationRecord> pending_;
 };
 
-/// One unit square held at two corners and pulled at the third by `load_N` (as in
-/// DdaOverlap.StepThatCrushesABlockIsRejected: E / 4 strains it by about 0.25).
-std::unique_ptr<dda::BlockSystem> pulled_block(double load_N) {
-  const mesh::Mesh m = dda::test_support::small_mesh(1, 1, 1.0, mesh::CellSplit::none);
-  auto system = std::make_unique<dda::BlockSystem>(m, std::vector<dda::Material>{dda::Material{25e9, 0.25, 2650.0}},
-                                                   dda::test_support::alm_settings(25e9));
-  system->add_fixed_point({0.0, 0.0});
-  system->add_fixed_point({0.0, 1.0});
-  system->add_point_load({1.0, 0.5}, {load_N, 0.0});
-  return system;
-}
-
 TEST(IterationTrace, RefusedAttemptsAreReportedWithTheirReasonAndIterations) {
-  auto system = pulled_block(0.25 * 25e9);
+  auto system = dda::test_support::pulled_unit_block(0.25 * 25e9);
   Recorder recorder;
   coupling::CoupledStep step(*system, {});
   step.observe_iterations(&recorder);
@@ -80,7 +68,7 @@ TEST(IterationTrace, RefusedAttemptsAreReportedWithTheirReasonAndIterations) {
 }
 
 TEST(IterationTrace, ConvergedAttemptEndsCommittedWithTheStepsIterationCount) {
-  auto system = pulled_block(0.0025 * 25e9);
+  auto system = dda::test_support::pulled_unit_block(0.0025 * 25e9);
   Recorder recorder;
   coupling::CoupledStep step(*system, {});
   step.observe_iterations(&recorder);
@@ -112,10 +100,10 @@ int separators(const std::string& line) {
   return n;
 }
 
-TEST(IterationTrace, CsvKeepsTextWithCommasAndQuotesInOneFieldAndAppendsOnRestart) {
+TEST(IterationTrace, CsvKeepsTextWithCommasAndQuotesInOneFieldAndRestartsAfterItsCheckpoint) {
   const std::string path = (std::filesystem::path(testing::TempDir()) / "hfdda_iterations.csv").string();
   {
-    simulation::IterationTrace trace(path, false);
+    simulation::IterationTrace trace(path);
     trace.begin_step(3, 2.5);
     coupling::IterationRecord r;
     r.attempt_dt_s = 0.5;
@@ -123,9 +111,12 @@ TEST(IterationTrace, CsvKeepsTextWithCommasAndQuotesInOneFieldAndAppendsOnRestar
     r.first_change = "joint 1 at (0, 1): open -> \"x\"";
     trace.iteration(r);
     trace.attempt_ended(0.5, 1, "faces overlap, 0.3 of the joint");
+    trace.begin_step(4, 3.0);  // written after the checkpoint of step 3, then stopped
+    trace.attempt_ended(0.5, 7, "");
   }
   {
-    simulation::IterationTrace again(path, true);  // a restarted run: no second header
+    // Restarted after step 3: no second header, step 4's old row dropped, written again.
+    simulation::IterationTrace again(path, 3);
     again.begin_step(4, 3.0);
     again.attempt_ended(0.5, 2, "");
   }
