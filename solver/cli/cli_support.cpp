@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 namespace hfdda::cli {
@@ -15,15 +16,21 @@ namespace hfdda::cli {
 namespace {
 
 volatile std::sig_atomic_t stop_flag = 0;  // set by the signal handler only
+const char* stop_notice = "";              // written by the handler: set before it is installed
 
 extern "C" void on_stop_signal(int signal_number) {
   stop_flag = 1;
   std::signal(signal_number, SIG_DFL);
+  // write(2) is async-signal-safe; a step can take minutes, so the user is told at once
+  // that the signal was taken and how to stop without waiting.
+  const ssize_t written = write(STDERR_FILENO, stop_notice, std::strlen(stop_notice));
+  (void)written;
 }
 
 }  // namespace
 
-void catch_stop_signals() {
+void catch_stop_signals(const char* notice) {
+  stop_notice = notice;
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
 }

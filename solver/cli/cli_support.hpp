@@ -7,8 +7,10 @@
 namespace hfdda::cli {
 
 /// First SIGINT/SIGTERM: stop_requested() turns true (the command finishes its step and
-/// stops cleanly); a second one ends the process at once (the default action).
-void catch_stop_signals();
+/// stops cleanly) and `notice` (a string literal: what happens now, and that a second
+/// signal stops at once) is written to stderr; a second one ends the process at once
+/// (the default action).
+void catch_stop_signals(const char* notice);
 bool stop_requested();
 
 /// Runs `script_name` (found next to this executable) with Debian's Python, the one that

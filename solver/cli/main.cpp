@@ -230,7 +230,9 @@ int run_command(int argc, char** argv, bool check_only) {
   options.restart = restart;
   options.trace_iterations = trace_iterations;
   options.stop_requested = hfdda::cli::stop_requested;
-  hfdda::cli::catch_stop_signals();
+  hfdda::cli::catch_stop_signals(
+      "\nhfdda: stop requested: the current step is finished first, then a checkpoint is written "
+      "(a step may take minutes; signal again to stop at once, keeping the last checkpoint)\n");
   const auto result = hfdda::simulation::run(model, options);
   if (result.interrupted) {
     std::fprintf(stderr, "hfdda: stopped after step %d (t = %g s) on a signal; checkpoint %s\n"

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -38,8 +37,8 @@ std::vector<dda::ContactChange> merge_failures(const std::vector<dda::ContactCha
 }  // namespace
 
 CoupledStep::CoupledStep(dda::BlockSystem& mechanics, std::vector<FluidLoadModel*> fluids,
-                         fracture::FractureRules rules, bool trace_cuts)
-    : mechanics_(mechanics), fluids_(std::move(fluids)), rules_(rules), trace_cuts_(trace_cuts), bonds_(mechanics) {
+                         fracture::FractureRules rules)
+    : mechanics_(mechanics), fluids_(std::move(fluids)), rules_(rules), bonds_(mechanics) {
   pressurised_.assign(mechanics_.mesh().points.size(), 0);
 }
 
@@ -59,7 +58,6 @@ void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats
     if (observer_) observer_->attempt_ended(dt_s, attempt_iterations_, e.what());
     if (cuts_left <= 0) throw;
     ++stats.step_cuts;
-    if (trace_cuts_) std::fprintf(stderr, "step of %g s cut: %s\n", dt_s, e.what());
     advance_into(0.5 * dt_s, cuts_left - 1, stats);
     advance_into(0.5 * dt_s, cuts_left - 1, stats);
   }

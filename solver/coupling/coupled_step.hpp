@@ -25,8 +25,7 @@ class CoupledStep {
  public:
   /// `fluids` may be empty (mechanics alone); their loads add up and a point is
   /// pressurised if any of them pressurises it. All must outlive the step object.
-  CoupledStep(dda::BlockSystem& mechanics, std::vector<FluidLoadModel*> fluids, fracture::FractureRules rules = {},
-              bool trace_cuts = false);
+  CoupledStep(dda::BlockSystem& mechanics, std::vector<FluidLoadModel*> fluids, fracture::FractureRules rules = {});
 
   /// Advances by dt. A step that does not converge is cut in two halves, recursively
   /// up to `max_step_cuts` levels deep; the statistics of every sub-step are summed.
@@ -77,7 +76,6 @@ class CoupledStep {
   dda::BlockSystem& mechanics_;
   std::vector<FluidLoadModel*> fluids_;
   fracture::FractureRules rules_;
-  bool trace_cuts_;
   IterationObserver* observer_ = nullptr;
   double attempt_dt_s_ = 0.0;   // time step of the current attempt [s]
   int attempt_iterations_ = 0;  // open-close iterations of the current attempt so far

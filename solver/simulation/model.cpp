@@ -550,8 +550,7 @@ Model build_model(const io::CaseConfig& case_config, ParameterSampler& sampler) 
     fluids.push_back(model.coupling.get());
     if (!fill.opened_by_fluid.empty()) detail::open_by_initial_pressure(model, fill);
   }
-  model.step = std::make_unique<coupling::CoupledStep>(system, std::move(fluids), fracture_rules(c),
-                                                       std::getenv("HFDDA_TRACE_CUTS") != nullptr);
+  model.step = std::make_unique<coupling::CoupledStep>(system, std::move(fluids), fracture_rules(c));
   if (c.load_ramp) {
     std::vector<std::string> names;
     for (const ModelFracture& f : model.fractures) names.push_back(f.name);

@@ -1,7 +1,7 @@
 # A run stopped mid-way (SIGNAL=KILL: killed outright; SIGNAL=TERM: asked to stop) and
 # continued with --restart gives the history.csv of a run never stopped, but for the
 # wall-time columns. SIGKILL must leave whole lines in history.csv; SIGTERM must end
-# with exit code 3 and a checkpoint.
+# with exit code 3 and a checkpoint, and say at once that the stop was taken.
 set(full "${OUT}_${SIGNAL}_full")
 set(out "${OUT}_${SIGNAL}")
 file(REMOVE_RECURSE "${full}" "${out}")
@@ -26,6 +26,10 @@ endif()
 if(SIGNAL STREQUAL "TERM")
   if(NOT code EQUAL 3 OR NOT err MATCHES "checkpoint .*--restart")
     message(FATAL_ERROR "SIGTERM: expected exit code 3 and a restart hint, got ${code}: ${err}")
+  endif()
+  # Told at once that the signal was taken, and how to stop without waiting for the step.
+  if(NOT err MATCHES "stop requested: the current step is finished first.*signal again to stop at once")
+    message(FATAL_ERROR "SIGTERM: no notice that the stop was requested: ${err}")
   endif()
   file(READ "${out}/summary.json" summary)
   if(NOT summary MATCHES "\"status\": \"interrupted\"")
