@@ -123,7 +123,8 @@ int run_one_realisation(const io::CaseConfig& config, long index, const std::str
   options.quiet = quiet;
   options.trace_iterations = trace_iterations;
   options.stop_requested = stop_requested;
-  catch_stop_signals("\nhfdda ensemble: stop requested: the current step is finished first "
+  options.abandon_step_requested = stop_requested;
+  catch_stop_signals("\nhfdda ensemble: stop requested: the current step is abandoned at its next iteration "
                      "(signal again to stop at once)\n");
   const simulation::RunResult result = simulation::run(model, options);
   if (result.interrupted) return 3;
@@ -215,7 +216,7 @@ int run_ensemble(int argc, char** argv, const ProcessGroup& group) {
   }
   // Under mpirun every rank gets the signal: the first rank alone says what happens.
   catch_stop_signals(lead ? "\nhfdda ensemble: stop requested: finished realisations are kept, those in flight "
-                            "stop at the end of their current step and are dropped (signal again to stop at once)\n"
+                            "stop at their next iteration and are dropped (signal again to stop at once)\n"
                           : "");
   const auto queue = make_work_queue(group, std::move(pending), lead && !quiet, stop_requested);
   const bool finished = ensemble::run_realisations(config, geometry, out_dir, *queue, stop_requested);

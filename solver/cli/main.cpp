@@ -52,7 +52,8 @@ constexpr const char* kUsage =
     "       --checkpoint-every N: write DIR/checkpoint.bin every N steps (default 10; 0: never).\n"
     "       --trace-iterations: also write DIR/iterations.csv, a row per open-close iteration of every\n"
     "       attempt at a step and per attempt's end (committed, or refused and cut, and why).\n"
-    "       SIGINT or SIGTERM: the current step is finished, a checkpoint written, exit 3.\n"
+    "       SIGINT or SIGTERM: the current step is abandoned at its next iteration (finished if a\n"
+    "       cut half of it is already committed), a checkpoint of the last finished step written, exit 3.\n"
     "       --restart: continue the run in DIR from its checkpoint (same case file), with\n"
     "       the same results as a run that was never stopped.\n"
     "check  validates CASE.yaml and builds its mesh without writing anything.\n"
@@ -230,9 +231,10 @@ int run_command(int argc, char** argv, bool check_only) {
   options.restart = restart;
   options.trace_iterations = trace_iterations;
   options.stop_requested = hfdda::cli::stop_requested;
+  options.abandon_step_requested = hfdda::cli::stop_requested;
   hfdda::cli::catch_stop_signals(
-      "\nhfdda: stop requested: the current step is finished first, then a checkpoint is written "
-      "(a step may take minutes; signal again to stop at once, keeping the last checkpoint)\n");
+      "\nhfdda: stop requested: the current step is abandoned at its next iteration and a checkpoint of the "
+      "last finished step written (signal again to stop at once, keeping the last checkpoint)\n");
   const auto result = hfdda::simulation::run(model, options);
   if (result.interrupted) {
     std::fprintf(stderr, "hfdda: stopped after step %d (t = %g s) on a signal; checkpoint %s\n"

@@ -16,6 +16,10 @@ namespace hfdda {
 
 class BinaryWriter {
  public:
+  BinaryWriter() = default;
+  /// Writes into `buffer`, emptied first but keeping its capacity (no reallocation when
+  /// the same amount is written again).
+  explicit BinaryWriter(std::string buffer) : bytes_(std::move(buffer)) { bytes_.clear(); }
   template <class T>
   void put(const T& value) {
     static_assert(std::is_trivially_copyable_v<T>, "put: plain values only");
@@ -45,6 +49,8 @@ class BinaryWriter {
     for (const auto& m : ms) put_matrix(m);
   }
   const std::string& bytes() const { return bytes_; }
+  /// The bytes written, moved out (the writer is empty afterwards).
+  std::string take_bytes() { return std::move(bytes_); }
 
  private:
   std::string bytes_;

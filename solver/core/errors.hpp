@@ -38,4 +38,11 @@ class ConvergenceError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A step abandoned on request (a stop signal) before it ended; the step's attempt was
+/// rolled back, so the state is that of the step's start.
+class StepInterrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace hfdda

@@ -54,6 +54,9 @@ void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats
     stats.accumulate(attempt(dt_s));
     if (observer_) observer_->attempt_ended(dt_s, attempt_iterations_, {});
     committed_s_ += dt_s;
+  } catch (const StepInterrupted& e) {
+    if (observer_) observer_->attempt_ended(dt_s, attempt_iterations_, e.what());
+    throw;
   } catch (const ConvergenceError& e) {
     if (observer_) observer_->attempt_ended(dt_s, attempt_iterations_, e.what());
     if (cuts_left <= 0) throw;
@@ -61,6 +64,13 @@ void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats
     advance_into(0.5 * dt_s, cuts_left - 1, stats);
     advance_into(0.5 * dt_s, cuts_left - 1, stats);
   }
+}
+
+void CoupledStep::stop_if_interrupted() const {
+  // A cut step whose first sub-steps are committed is finished instead: its state is no
+  // longer the step's start, which is what a checkpoint (and a restart) must hold.
+  if (committed_s_ == 0.0 && interrupt_requested_ && interrupt_requested_())
+    throw StepInterrupted("the step was abandoned on request; the state is that of its start");
 }
 
 StepStatistics CoupledStep::attempt(double dt_s) {
@@ -143,6 +153,7 @@ Eigen::VectorXd CoupledStep::open_close_iterations(StepStatistics& stats) {
   const int max_iterations = mechanics_.settings().max_open_close_iterations;
   bool stiffness_changed = true;
   for (int oc = 1; oc <= max_iterations; ++oc) {
+    stop_if_interrupted();
     stats.open_close_iterations = oc;
     if (stiffness_changed) {
       mechanics_.assemble_and_factorise(stats);
@@ -175,6 +186,7 @@ Eigen::VectorXd CoupledStep::solve_contacts(StepStatistics& stats) {
   double displacement_change = 0.0;
   mechanics_.begin_contact_iterations();
   for (int it = 0;; ++it) {
+    if (it > 0) stop_if_interrupted();
     const Eigen::VectorXd rhs = mechanics_.contact_rhs();
     const auto start = Clock::now();
     d_previous.swap(d);

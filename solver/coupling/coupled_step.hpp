@@ -10,6 +10,7 @@
 //   trial tractions -> bond failures -> contact state changes -> fluids' state changes
 // until nothing changes; then commit everything, or roll everything back.
 
+#include <functional>
 #include <vector>
 
 #include "core/step_statistics.hpp"
@@ -40,6 +41,11 @@ class CoupledStep {
   /// nobody; the default). The observer must outlive its use; observing costs one pass
   /// over the joints and blocks per iteration.
   void observe_iterations(IterationObserver* observer) { observer_ = observer; }
+  /// Asked before every open-close and contact iteration; true abandons the step with
+  /// StepInterrupted, the attempt rolled back, so long as no sub-step of a cut step has
+  /// been committed yet (the state is then the step's start; otherwise the step goes on
+  /// to its end). Empty (the default): never.
+  void interrupt_when(std::function<bool()> requested) { interrupt_requested_ = std::move(requested); }
   /// The intact bonds of the mechanics (also read by the load ramp).
   const BondList& bonds() const { return bonds_; }
 
@@ -72,11 +78,14 @@ class CoupledStep {
   /// tension failures wait for a round without one (seed 2.3 iii: one change at a time).
   std::vector<fracture::BondFailure> toughness_failures(const dda::OpenCloseTrial& trial, const Eigen::VectorXd& d);
   const std::vector<char>& pressurised_points();
+  /// Throws StepInterrupted if a stop was requested and the step may still be abandoned.
+  void stop_if_interrupted() const;
 
   dda::BlockSystem& mechanics_;
   std::vector<FluidLoadModel*> fluids_;
   fracture::FractureRules rules_;
   IterationObserver* observer_ = nullptr;
+  std::function<bool()> interrupt_requested_;
   double attempt_dt_s_ = 0.0;   // time step of the current attempt [s]
   int attempt_iterations_ = 0;  // open-close iterations of the current attempt so far
   double committed_s_ = 0.0;  // time committed by the current or last advance() [s]

@@ -132,6 +132,7 @@ std::optional<RealisationRecord> run_realisation(const io::CaseConfig& config, c
   options.quiet = true;
   options.write_files = false;
   options.stop_requested = stop_requested;
+  options.abandon_step_requested = stop_requested;  // a realisation in flight is dropped anyway
   options.after_step = [&](const simulation::Model& m, int, double t) {
     while (record.maps.snapshots.size() < times.size() && t >= times[record.maps.snapshots.size()] * (1.0 - 1e-9))
       record.maps.snapshots.push_back(snapshot(m, geometry));

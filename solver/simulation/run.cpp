@@ -179,15 +179,27 @@ RunResult run(Model& model, const RunOptions& options) {
     trace.emplace(options.output_dir + "/iterations.csv", options.restart ? result.steps : -1);
     model.step->observe_iterations(&*trace);
   }
-  struct StopObserving {  // the trace ends with the run, even when a step throws
+  // A load ramp has moved to its next level before the step: its steps run to their end.
+  model.step->interrupt_when(model.ramp ? std::function<bool()>{} : options.abandon_step_requested);
+  struct StopObserving {  // the trace and the interruptions end with the run, even when a step throws
     Model& model;
-    ~StopObserving() { model.step->observe_iterations(nullptr); }
+    ~StopObserving() {
+      model.step->observe_iterations(nullptr);
+      model.step->interrupt_when({});
+    }
   } stop_observing{model};
-  auto checkpoint = [&] {
-    RunProgress p{result.steps, result.time_s, wall_before + std::chrono::duration<double>(Clock::now() - start).count(),
-                  result.totals, result.record, outputs.blocks_pvd.entries(), outputs.joints_pvd.entries()};
-    write_checkpoint(checkpoint_path(options.output_dir), model, p);
+  auto progress_now = [&] {
+    return RunProgress{result.steps, result.time_s,
+                       wall_before + std::chrono::duration<double>(Clock::now() - start).count(), result.totals,
+                       result.record, outputs.blocks_pvd.entries(), outputs.joints_pvd.entries()};
   };
+  auto checkpoint = [&] { write_checkpoint(checkpoint_path(options.output_dir), model, progress_now()); };
+  // A step abandoned on request leaves the solvers' warm starts (kept in a checkpoint,
+  // so that a restart repeats the same iterates) at its last iterate: the checkpoint is
+  // taken at the step's start instead: one serialisation of the state per step, into a
+  // buffer reused from step to step (its memory: one checkpoint's size).
+  const bool may_abandon = files && options.abandon_step_requested && !model.ramp;
+  std::string step_start_checkpoint;
   // Time stepping to end_time, or one step per load level of a load ramp.
   LoadRamp* ramp = model.ramp.get();
   const bool stop_at_edge = time.stop_when == "fluid_at_edge";
@@ -198,11 +210,20 @@ RunResult run(Model& model, const RunOptions& options) {
   for (int step = result.steps + 1; ramp ? ramp->has_next() : step <= n_steps; ++step) {
     const double t = step * time.dt_s;
     if (ramp) model.system->set_load_level(ramp->next_level());
+    if (may_abandon)
+      step_start_checkpoint = checkpoint_bytes(model, progress_now(), std::move(step_start_checkpoint));
     StepStatistics st;
     if (trace) trace->begin_step(step, t - time.dt_s);
     try {
       st = model.step->advance(time.dt_s, model.config.numerics.max_step_cuts);
       check_fields_finite(*model.system, model.flow.get(), step);
+    } catch (const StepInterrupted&) {
+      // The attempt was rolled back to the step's start, whose checkpoint was kept.
+      if (files) write_checkpoint_bytes(checkpoint_path(options.output_dir), step_start_checkpoint);
+      result.interrupted = true;
+      result.message = "step " + std::to_string(step) + ": abandoned on request; the state is that of step " +
+                       std::to_string(result.steps) + (files ? ", checkpoint written" : "");
+      break;
     } catch (const ConvergenceError& e) {
       char where[128];
       if (ramp)

@@ -21,6 +21,11 @@ struct RunOptions {
   bool restart = false;
   /// Asked after every step; true: write a checkpoint and stop (RunResult::interrupted).
   std::function<bool()> stop_requested{};
+  /// Asked within a step of a time-stepped run (not a load ramp), before each of its
+  /// open-close and contact iterations; true abandons the step (its attempt rolled back, unless a sub-step of a cut step was
+  /// already committed: the step is then finished), writes a checkpoint of the step
+  /// before and stops (RunResult::interrupted). A step can take minutes.
+  std::function<bool()> abandon_step_requested{};
   /// false: nothing is written (no directory, history, joints, VTU, summary or
   /// checkpoint); the rows stay in RunResult::record. An ensemble realisation runs so.
   bool write_files = true;
@@ -33,7 +38,7 @@ struct RunOptions {
 
 struct RunResult {
   bool completed = false;   ///< false: a step did not converge, or the run was interrupted
-  bool interrupted = false; ///< stopped on request after a step, with a checkpoint
+  bool interrupted = false; ///< stopped on request after or within a step, with a checkpoint
   std::string message;      ///< why it stopped, if it did not complete
   /// Completed runs: "end_time" or "load_ramp" at their end, or the time.stop_when
   /// condition that ended them early ("fluid_at_edge").

@@ -28,7 +28,7 @@ if(SIGNAL STREQUAL "TERM")
     message(FATAL_ERROR "SIGTERM: expected exit code 3 and a restart hint, got ${code}: ${err}")
   endif()
   # Told at once that the signal was taken, and how to stop without waiting for the step.
-  if(NOT err MATCHES "stop requested: the current step is finished first.*signal again to stop at once")
+  if(NOT err MATCHES "stop requested: the current step is abandoned at its next iteration.*signal again to stop at once")
     message(FATAL_ERROR "SIGTERM: no notice that the stop was requested: ${err}")
   endif()
   file(READ "${out}/summary.json" summary)

@@ -2,7 +2,8 @@
 // and continued from its checkpoint in a freshly built model gives the same history
 // rows, block state, flow state and joint table, bit for bit, as a run never stopped;
 // for a fluid-driven fracture (KGD, joints wetted after the checkpoint) and a load
-// ramp (a jump and the bond failures after the checkpoint).
+// ramp (a jump and the bond failures after the checkpoint); also when the stop is asked
+// inside a step, which is then abandoned.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -124,6 +125,48 @@ TEST(Checkpoint, KgdContinuesBitForBit) {
       io::load_case_file(std::string(HFDDA_TEST_DATA_DIR) + "/cases/restart_kgd.yaml");
   expect_restart_matches(config, "kgd_after_wetting", 3);  // joints were wetted in step 3
   expect_restart_matches(config, "kgd_before_wetting", 5);
+}
+
+TEST(Checkpoint, StepAbandonedMidwayRestartsBitForBit) {
+  // A stop asked inside step 4 (at the third iteration it is asked about) abandons the
+  // step, rolled back to its start: the checkpoint is that of step 3, and the run
+  // continued from it is the run never stopped, bit for bit.
+  const io::CaseConfig config =
+      io::load_case_file(std::string(HFDDA_TEST_DATA_DIR) + "/cases/restart_kgd.yaml");
+  Model full = build_model(config);
+  const fs::path full_dir = test_dir("abandoned_full");
+  const RunResult reference = run(full, {full_dir.string(), true, false});
+  ASSERT_TRUE(reference.completed) << reference.message;
+
+  const fs::path dir = test_dir("abandoned");
+  Model first = build_model(config);
+  RunOptions stopping{dir.string(), true, false};
+  stopping.trace_iterations = true;
+  int steps_done = 0, asked_in_step_4 = 0;
+  stopping.after_step = [&](const Model&, int step, double) { steps_done = step; };
+  stopping.abandon_step_requested = [&] { return steps_done == 3 && ++asked_in_step_4 == 3; };
+  const RunResult stopped = run(first, stopping);
+  ASSERT_TRUE(stopped.interrupted) << stopped.message;
+  EXPECT_FALSE(stopped.completed);
+  EXPECT_EQ(asked_in_step_4, 3) << "the stop was asked inside step 4";
+  EXPECT_EQ(stopped.steps, 3);
+  EXPECT_NE(stopped.message.find("abandoned on request"), std::string::npos) << stopped.message;
+  ASSERT_TRUE(fs::exists(checkpoint_path(dir.string())));
+  EXPECT_NE(file_text(dir / "iterations.csv").find("abandoned on request"), std::string::npos)
+      << "the trace ends the abandoned attempt with the reason";
+
+  Model second = build_model(config);
+  RunOptions restarting{dir.string(), true, false};
+  restarting.restart = true;
+  const RunResult continued = run(second, restarting);
+  ASSERT_TRUE(continued.completed) << continued.message;
+  EXPECT_EQ(continued.steps, reference.steps);
+  EXPECT_EQ(continued.totals.alm_iterations, reference.totals.alm_iterations);
+  expect_same_records(reference.record, continued.record);
+  expect_same_state(full, second);
+  EXPECT_EQ(file_text(full_dir / "joints" / "joints_final.csv"), file_text(dir / "joints" / "joints_final.csv"));
+  fs::remove_all(full_dir);
+  fs::remove_all(dir);
 }
 
 /// A 12 m x 12 m square of 1 m cells pulled apart across a breakable line (T0 = 1e5 Pa):
