@@ -40,6 +40,15 @@ Eigen::VectorXd HydroMechanicalCoupling::end_gaps(const Eigen::VectorXd& u) cons
   return out;
 }
 
+Eigen::MatrixXd HydroMechanicalCoupling::end_gaps_of(const Eigen::MatrixXd& u) const {
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(gaps_.size()), u.cols());
+  for (std::size_t e = 0; e < gaps_.size(); ++e) {
+    const auto& g = gaps_[e];
+    out.row(static_cast<Eigen::Index>(e)) = g.row_a * u.middleRows<6>(6 * g.block_a) + g.row_b * u.middleRows<6>(6 * g.block_b);
+  }
+  return out;
+}
+
 const Eigen::VectorXd& HydroMechanicalCoupling::pressure_load(const dda::BlockSystem& system,
                                                               const Eigen::VectorXd& p) {
   work_.setZero(6 * system.n_blocks());
@@ -89,6 +98,7 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     }
     operator_ = std::make_unique<ApertureOperator>(system, gaps_, loads_, nodes_of_fracture_);
     sensitivity_.resize(0, 0);
+    sensitivity_version_ = -1;
     topology_changed_ = false;
     stats_.seconds_sensitivity += seconds_since(start);
     return;
@@ -101,7 +111,7 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     form_sensitivity(system, system.converged_response_solver(), false);
   } else {
     const double bytes = 6.0 * nb * n * sizeof(double);
-    form_sensitivity(system, solver, bytes <= kMaxResponseBytes);
+    form_sensitivity(system, solver, bytes <= max_response_bytes_);
   }
   topology_changed_ = false;
   stats_.seconds_sensitivity += seconds_since(start);
@@ -112,7 +122,16 @@ void HydroMechanicalCoupling::form_sensitivity(const dda::BlockSystem& system, c
   const auto& nodes = network_.trial_nodes();
   const int n = static_cast<int>(nodes.size());
   const int rows = 6 * system.n_blocks();
-  if (!keep) response_version_ = -1;
+  const bool own_factor = &solver == &system.solver();  // not the converged response's
+  if (!keep) {
+    response_version_ = -1;
+    // Too large to keep X: S itself follows the springs changed in K, where it can.
+    if (own_factor && update_sensitivity(system)) {
+      ++stats_.sensitivity_corrections;
+      return;
+    }
+  }
+  sensitivity_version_ = -1;
   if (response_version_ >= 0 && response_version_ != system.stiffness_version() && !update_responses(system))
     response_version_ = -1;
 
@@ -169,7 +188,14 @@ void HydroMechanicalCoupling::form_sensitivity(const dda::BlockSystem& system, c
       }
     }
   }
-  if (!keep) return;
+  if (!keep) {
+    if (own_factor) {
+      sensitivity_version_ = system.stiffness_version();
+      sensitivity_fractures_ = network_.trial_fractures();
+      sensitivity_points_ = nodes;
+    }
+    return;
+  }
   for (int i = 0; i < n; ++i)
     for (std::size_t e = 0; e < gaps_.size(); ++e) sensitivity_(e, i) = project(x_new, e, i);
   responses_.swap(x_new);
@@ -178,42 +204,54 @@ void HydroMechanicalCoupling::form_sensitivity(const dda::BlockSystem& system, c
   response_version_ = system.stiffness_version();
 }
 
-bool HydroMechanicalCoupling::update_responses(const dda::BlockSystem& system) {
+bool HydroMechanicalCoupling::stiffness_change(const dda::BlockSystem& system, int version,
+                                               const std::vector<std::vector<NodeLoad>>& loads, int max_springs,
+                                               Eigen::MatrixXd& y, Eigen::MatrixXd& coefficients) const {
   std::vector<dda::SpringTerm> changes;
-  if (!system.spring_changes_since(response_version_, changes)) return false;
+  if (!system.spring_changes_since(version, changes)) return false;
   const int r = static_cast<int>(changes.size());
-  const int n = static_cast<int>(responses_.cols());
+  const int n = static_cast<int>(loads.size());
   // r solves and a product of r columns, against solving the n columns anew.
-  if (r >= n) return false;
-  if (r > 0) {
-    const int rows = static_cast<int>(responses_.rows());
-    // K_new = K_old + C D C^T, column s of C: sqrt(|k_s|) e_s, D = sign(k_s). With
-    // Y = K_new^-1 C: K_new^-1 = K_old^-1 - Y N^-1 Y^T, N = D - C^T Y.
-    const Eigen::MatrixXd y = [&] {
-      Eigen::MatrixXd c = Eigen::MatrixXd::Zero(rows, r);  // freed once Y is solved
-      for (int k = 0; k < r; ++k) {
-        const dda::SpringTerm& t = changes[k];
-        const double scale = std::sqrt(std::abs(t.stiffness));
-        c.col(k).segment<6>(6 * t.block_a) += scale * t.row_a.transpose();
-        c.col(k).segment<6>(6 * t.block_b) += scale * t.row_b.transpose();
-      }
-      return system.solver().solve(c);
-    }();
-    Eigen::MatrixXd nmat(r, r);
+  if (r >= max_springs) return false;
+  y.resize(0, 0);
+  coefficients.resize(0, 0);
+  if (r == 0) return true;
+  const int rows = 6 * system.n_blocks();
+  // K_new = K_old + C D C^T, column s of C: sqrt(|k_s|) e_s, D = sign(k_s). With
+  // Y = K_new^-1 C: K_new^-1 = K_old^-1 - Y N^-1 Y^T, N = D - C^T Y.
+  {
+    Eigen::MatrixXd c = Eigen::MatrixXd::Zero(rows, r);  // freed once Y is solved
     for (int k = 0; k < r; ++k) {
       const dda::SpringTerm& t = changes[k];
       const double scale = std::sqrt(std::abs(t.stiffness));
-      nmat.row(k) = -scale * (t.row_a * y.middleRows<6>(6 * t.block_a) + t.row_b * y.middleRows<6>(6 * t.block_b));
-      nmat(k, k) += t.stiffness > 0.0 ? 1.0 : -1.0;
+      c.col(k).segment<6>(6 * t.block_a) += scale * t.row_a.transpose();
+      c.col(k).segment<6>(6 * t.block_b) += scale * t.row_b.transpose();
     }
-    Eigen::MatrixXd ytb = Eigen::MatrixXd::Zero(r, n);  // Y^T B for the loads X was solved for
-    for (int i = 0; i < n; ++i)
-      for (const NodeLoad& l : response_loads_[i])
-        ytb.col(i).noalias() += y.middleRows<6>(6 * l.block).transpose() * l.force;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(nmat);
-    if (!(lu.rcond() > 1e-14)) return false;  // the new K singular where the springs act
-    const Eigen::MatrixXd coefficients = lu.solve(ytb);  // N^-1 Y^T B, r x n
-    responses_.noalias() -= y * coefficients;           // no temporary of X's size
+    y = system.solver().solve(c);
+  }
+  Eigen::MatrixXd nmat(r, r);
+  for (int k = 0; k < r; ++k) {
+    const dda::SpringTerm& t = changes[k];
+    const double scale = std::sqrt(std::abs(t.stiffness));
+    nmat.row(k) = -scale * (t.row_a * y.middleRows<6>(6 * t.block_a) + t.row_b * y.middleRows<6>(6 * t.block_b));
+    nmat(k, k) += t.stiffness > 0.0 ? 1.0 : -1.0;
+  }
+  Eigen::MatrixXd ytb = Eigen::MatrixXd::Zero(r, n);  // Y^T B for the given loads
+  for (int i = 0; i < n; ++i)
+    for (const NodeLoad& l : loads[i]) ytb.col(i).noalias() += y.middleRows<6>(6 * l.block).transpose() * l.force;
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(nmat);
+  if (!(lu.rcond() > 1e-14)) return false;  // the new K singular where the springs act
+  coefficients = lu.solve(ytb);             // N^-1 Y^T B, r x n
+  return true;
+}
+
+bool HydroMechanicalCoupling::update_responses(const dda::BlockSystem& system) {
+  Eigen::MatrixXd y, coefficients;
+  const int n = static_cast<int>(responses_.cols());
+  if (!stiffness_change(system, response_version_, response_loads_, n, y, coefficients)) return false;
+  if (y.cols() > 0) {
+    const int rows = static_cast<int>(responses_.rows());
+    responses_.noalias() -= y * coefficients;  // no temporary of X's size
     // Checked like a corrected factorisation (dda/low_rank_updates.cpp): K X v = B v.
     Eigen::VectorXd bv = Eigen::VectorXd::Zero(rows);
     for (int i = 0; i < n; ++i)
@@ -222,16 +260,38 @@ bool HydroMechanicalCoupling::update_responses(const dda::BlockSystem& system) {
     const double residual = (system.stiffness().multiply(xv) - bv).norm() / bv.norm();
     if (!(residual <= kResponseResidual)) return false;
     // For tests: how far the update moved S, max |J Y N^-1 Y^T B|.
-    Eigen::MatrixXd jy(static_cast<Eigen::Index>(gaps_.size()), r);
-    for (std::size_t e = 0; e < gaps_.size(); ++e) {
-      const auto& g = gaps_[e];
-      jy.row(static_cast<Eigen::Index>(e)) = g.row_a * y.middleRows<6>(6 * g.block_a) + g.row_b * y.middleRows<6>(6 * g.block_b);
-    }
+    const Eigen::MatrixXd jy = end_gaps_of(y);
     const double moved = gaps_.empty() ? 0.0 : (jy * coefficients).cwiseAbs().maxCoeff();
     const double scale = sensitivity_.size() > 0 ? sensitivity_.cwiseAbs().maxCoeff() : 0.0;
     last_update_size_ = scale > 0.0 ? moved / scale : 0.0;
   }
   response_version_ = system.stiffness_version();
+  return true;
+}
+
+bool HydroMechanicalCoupling::update_sensitivity(const dda::BlockSystem& system) {
+  const int n = static_cast<int>(loads_.size());
+  if (sensitivity_version_ < 0 || sensitivity_.cols() != n || sensitivity_fractures_ != network_.trial_fractures() ||
+      sensitivity_points_ != network_.trial_nodes())
+    return false;
+  Eigen::MatrixXd y, coefficients;
+  // C and Y (6 nb x r each) are held by the update: no more springs than fit the bound of X.
+  const double column_bytes = 6.0 * system.n_blocks() * sizeof(double);
+  const int max_springs = static_cast<int>(std::min<double>(n, kMaxResponseBytes / column_bytes));
+  if (!stiffness_change(system, sensitivity_version_, loads_, max_springs, y, coefficients)) return false;
+  if (y.cols() > 0) {
+    const Eigen::MatrixXd change = end_gaps_of(y) * coefficients;  // J Y N^-1 Y^T B
+    const Eigen::MatrixXd updated = sensitivity_ - change;
+    // Checked against one solve with the new factor: S v = J K^-1 B v, v all ones.
+    const Eigen::VectorXd reference = end_gaps(system.solver().solve(pressure_load(system, Eigen::VectorXd::Ones(n))));
+    const double error = (updated.rowwise().sum() - reference).norm() / reference.norm();
+    if (!(error <= kResponseResidual)) return false;
+    const double scale = sensitivity_.cwiseAbs().maxCoeff();
+    last_update_size_ = scale > 0.0 ? change.cwiseAbs().maxCoeff() / scale : 0.0;
+    sensitivity_ = updated;
+    stats_.response_columns_solved += static_cast<int>(y.cols()) + 1;
+  }
+  sensitivity_version_ = system.stiffness_version();
   return true;
 }
 

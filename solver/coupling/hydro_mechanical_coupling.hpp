@@ -84,8 +84,12 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   /// X = K^-1 B is kept while it takes at most this many bytes (600 nodes on 7,700
   /// blocks: 0.22 GB); a prepare that changes its columns holds the old and the new X
   /// for a moment, twice this. Larger networks have S formed column block by column
-  /// block and the displacements solved, as before X was kept.
+  /// block and the displacements solved, as before X was kept; within a step S then
+  /// follows the springs changed in K by itself (update_sensitivity) while the trial
+  /// network stays the same.
   static constexpr double kMaxResponseBytes = 256.0 * 1024 * 1024;
+  /// Replaces kMaxResponseBytes (tests set 0 to take the path of large networks).
+  void set_max_response_bytes(double bytes) { max_response_bytes_ = bytes; }
   /// |K X v - B v| / |B v| (v all ones) above which an updated X is dropped and solved
   /// anew: the bound of a corrected factorisation (dda::BlockSystem::kLowRankResidual).
   static constexpr double kResponseResidual = 1e-7;
@@ -100,6 +104,16 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   /// N = D - C^T Y (Woodbury identity with the new factor); false when X cannot follow
   /// (K changed otherwise, too many springs, the check solve fails).
   bool update_responses(const dda::BlockSystem& system);
+  /// Y = K^-1 C (the new factor) and N^-1 (Y^T B) for the nodal `loads`, of the springs
+  /// changed in K since `version`; false when K changed otherwise (no spring log), the
+  /// springs are `max_springs` or more, or N is singular where they act. No spring
+  /// changed: y and coefficients empty, true.
+  bool stiffness_change(const dda::BlockSystem& system, int version, const std::vector<std::vector<NodeLoad>>& loads,
+                        int max_springs, Eigen::MatrixXd& y, Eigen::MatrixXd& coefficients) const;
+  /// Where X is not kept (too large): S for the springs changed in K since S was formed,
+  /// S -= (J Y) N^-1 (Y^T B), r solves instead of n; false when S cannot follow (the
+  /// trial network changed, K changed otherwise, too many springs, the check fails).
+  bool update_sensitivity(const dda::BlockSystem& system);
   /// X p replaces a solve where X is of the current K and reads no more memory than
   /// the solve's two passes through the factor.
   bool responses_apply(const dda::BlockSystem& system) const;
@@ -107,6 +121,8 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   const Eigen::VectorXd& pressure_load(const dda::BlockSystem& system, const Eigen::VectorXd& p);
   /// J u: the normal gaps of the fracture ends for block displacements u.
   Eigen::VectorXd end_gaps(const Eigen::VectorXd& u) const;
+  /// J U, column by column.
+  Eigen::MatrixXd end_gaps_of(const Eigen::MatrixXd& u) const;
 
   fluid::FlowNetwork& network_;
   FlowJacobian jacobian_;
@@ -121,6 +137,11 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   std::vector<int> response_points_;
   std::vector<std::vector<NodeLoad>> response_loads_;
   double last_update_size_ = 0.0;
+  // Without X: the K version S was formed or updated for (-1: none to update), and the
+  // trial fractures and nodes it was formed for.
+  int sensitivity_version_ = -1;
+  double max_response_bytes_ = kMaxResponseBytes;
+  std::vector<int> sensitivity_fractures_, sensitivity_points_;
   std::vector<std::array<int, 2>> nodes_of_fracture_;  // per trial fracture
   std::unique_ptr<ApertureOperator> operator_;   // S as an operator (krylov path)
   Eigen::VectorXd work_;

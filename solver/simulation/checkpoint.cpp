@@ -93,16 +93,8 @@ std::uint64_t case_fingerprint(const Model& model) {
 }
 
 void write_checkpoint(const std::string& path, const Model& model, const RunProgress& progress) {
-  write_checkpoint_bytes(path, checkpoint_bytes(model, progress));
-}
-
-void write_checkpoint_bytes(const std::string& path, const std::string& bytes) {
-  io::write_file_atomically(path, bytes);
-}
-
-std::string checkpoint_bytes(const Model& model, const RunProgress& progress, std::string buffer) {
   static_assert(std::is_trivially_copyable_v<StepStatistics>);
-  BinaryWriter out(std::move(buffer));
+  BinaryWriter out;
   out.put_string(kMagic);
   out.put(kCheckpointVersion);
   out.put(case_fingerprint(model));
@@ -123,7 +115,7 @@ std::string checkpoint_bytes(const Model& model, const RunProgress& progress, st
   out.put<bool>(model.ramp != nullptr);
   if (model.ramp) model.ramp->save_state(out);
   out.put_string(kEnd);
-  return out.take_bytes();
+  io::write_file_atomically(path, out.bytes());
 }
 
 RunProgress read_checkpoint(const std::string& path, Model& model) {

@@ -41,11 +41,6 @@ std::uint64_t case_fingerprint(const Model& model);
 
 /// Writes the model's state and the progress atomically. Throws std::runtime_error.
 void write_checkpoint(const std::string& path, const Model& model, const RunProgress& progress);
-/// The bytes write_checkpoint would write, kept in memory (a run that may abandon a
-/// step keeps those of the step's start), and their writing, atomically.
-/// `buffer`'s capacity is reused.
-std::string checkpoint_bytes(const Model& model, const RunProgress& progress, std::string buffer = {});
-void write_checkpoint_bytes(const std::string& path, const std::string& bytes);
 
 /// Restores the model (freshly built from the same case) from a checkpoint and returns
 /// the progress. Throws std::runtime_error for a missing, truncated or foreign file, a

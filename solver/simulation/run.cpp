@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/binary_io.hpp"
 #include "core/errors.hpp"
 #include "io/output.hpp"
 #include "simulation/checkpoint.hpp"
@@ -194,12 +195,12 @@ RunResult run(Model& model, const RunOptions& options) {
                        result.record, outputs.blocks_pvd.entries(), outputs.joints_pvd.entries()};
   };
   auto checkpoint = [&] { write_checkpoint(checkpoint_path(options.output_dir), model, progress_now()); };
-  // A step abandoned on request leaves the solvers' warm starts (kept in a checkpoint,
-  // so that a restart repeats the same iterates) at its last iterate: the checkpoint is
-  // taken at the step's start instead: one serialisation of the state per step, into a
-  // buffer reused from step to step (its memory: one checkpoint's size).
-  const bool may_abandon = files && options.abandon_step_requested && !model.ramp;
-  std::string step_start_checkpoint;
+  // A step abandoned on request is rolled back, but the flow network's warm start (its
+  // last trial, kept in a checkpoint so that a restart repeats the same iterates) is the
+  // abandoned attempt's last iterate: the network's state at the step's start is kept
+  // (a few vectors per node and joint) and put back before the checkpoint is written.
+  const bool may_abandon = files && options.abandon_step_requested && !model.ramp && model.flow;
+  std::string flow_at_step_start;
   // Time stepping to end_time, or one step per load level of a load ramp.
   LoadRamp* ramp = model.ramp.get();
   const bool stop_at_edge = time.stop_when == "fluid_at_edge";
@@ -210,16 +211,23 @@ RunResult run(Model& model, const RunOptions& options) {
   for (int step = result.steps + 1; ramp ? ramp->has_next() : step <= n_steps; ++step) {
     const double t = step * time.dt_s;
     if (ramp) model.system->set_load_level(ramp->next_level());
-    if (may_abandon)
-      step_start_checkpoint = checkpoint_bytes(model, progress_now(), std::move(step_start_checkpoint));
+    if (may_abandon) {
+      BinaryWriter out(std::move(flow_at_step_start));
+      model.flow->save_state(out);
+      flow_at_step_start = out.take_bytes();
+    }
     StepStatistics st;
     if (trace) trace->begin_step(step, t - time.dt_s);
     try {
       st = model.step->advance(time.dt_s, model.config.numerics.max_step_cuts);
       check_fields_finite(*model.system, model.flow.get(), step);
     } catch (const StepInterrupted&) {
-      // The attempt was rolled back to the step's start, whose checkpoint was kept.
-      if (files) write_checkpoint_bytes(checkpoint_path(options.output_dir), step_start_checkpoint);
+      // The attempt was rolled back to the step's start; so is the flow's warm start.
+      if (may_abandon) {
+        BinaryReader in(flow_at_step_start);
+        model.flow->restore_state(in);
+      }
+      if (files) checkpoint();
       result.interrupted = true;
       result.message = "step " + std::to_string(step) + ": abandoned on request; the state is that of step " +
                        std::to_string(result.steps) + (files ? ", checkpoint written" : "");

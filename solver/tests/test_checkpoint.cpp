@@ -132,28 +132,26 @@ TEST(Checkpoint, KgdContinuesBitForBit) {
   expect_restart_matches(config, "kgd_before_wetting", 5);
 }
 
-TEST(Checkpoint, StepAbandonedMidwayRestartsBitForBit) {
-  // A stop asked inside step 4 (at the third iteration it is asked about) abandons the
-  // step, rolled back to its start: the checkpoint is that of step 3, and the run
-  // continued from it is the run never stopped, bit for bit.
-  const io::CaseConfig config =
-      io::load_case_file(std::string(HFDDA_TEST_DATA_DIR) + "/cases/restart_kgd.yaml");
+/// Runs the case through, and again with a stop asked inside step 4 at the `ask`-th time
+/// it is asked: the step is abandoned, rolled back to its start, the checkpoint is that
+/// of step 3, and the run continued from it is the run never stopped, bit for bit.
+void expect_abandoned_step_restart_matches(const io::CaseConfig& config, const std::string& name, int ask) {
   Model full = build_model(config);
-  const fs::path full_dir = test_dir("abandoned_full");
+  const fs::path full_dir = test_dir(name + "_full");
   const RunResult reference = run(full, {full_dir.string(), true, false});
   ASSERT_TRUE(reference.completed) << reference.message;
 
-  const fs::path dir = test_dir("abandoned");
+  const fs::path dir = test_dir(name);
   Model first = build_model(config);
   RunOptions stopping{dir.string(), true, false};
   stopping.trace_iterations = true;
   int steps_done = 0, asked_in_step_4 = 0;
   stopping.after_step = [&](const Model&, int step, double) { steps_done = step; };
-  stopping.abandon_step_requested = [&] { return steps_done == 3 && ++asked_in_step_4 == 3; };
+  stopping.abandon_step_requested = [&] { return steps_done == 3 && ++asked_in_step_4 == ask; };
   const RunResult stopped = run(first, stopping);
   ASSERT_TRUE(stopped.interrupted) << stopped.message;
   EXPECT_FALSE(stopped.completed);
-  EXPECT_EQ(asked_in_step_4, 3) << "the stop was asked inside step 4";
+  EXPECT_EQ(asked_in_step_4, ask) << "the stop was asked inside step 4";
   EXPECT_EQ(stopped.steps, 3);
   EXPECT_NE(stopped.message.find("abandoned on request"), std::string::npos) << stopped.message;
   ASSERT_TRUE(fs::exists(checkpoint_path(dir.string())));
@@ -163,6 +161,22 @@ TEST(Checkpoint, StepAbandonedMidwayRestartsBitForBit) {
   expect_continued_run_matches(config, full, reference, full_dir, dir);
   fs::remove_all(full_dir);
   fs::remove_all(dir);
+}
+
+TEST(Checkpoint, StepAbandonedMidwayRestartsBitForBit) {
+  const io::CaseConfig config =
+      io::load_case_file(std::string(HFDDA_TEST_DATA_DIR) + "/cases/restart_kgd.yaml");
+  // How often step 4 asks (before each open-close and each later contact iteration).
+  Model counting = build_model(config);
+  RunOptions asking{"", true, false};
+  asking.write_files = false;
+  int steps_done = 0, asks = 0;
+  asking.after_step = [&](const Model&, int step, double) { steps_done = step; };
+  asking.abandon_step_requested = [&] { asks += steps_done == 3; return false; };
+  ASSERT_TRUE(run(counting, asking).completed);
+  ASSERT_GE(asks, 4) << "step 4 must iterate for the late stop to follow contact changes";
+  expect_abandoned_step_restart_matches(config, "abandoned_early", 2);    // in the first contact iterations
+  expect_abandoned_step_restart_matches(config, "abandoned_late", asks);  // its last open-close round
 }
 
 /// A 12 m x 12 m square of 1 m cells pulled apart across a breakable line (T0 = 1e5 Pa):
