@@ -66,10 +66,22 @@ void CoupledStep::advance_into(double dt_s, int cuts_left, StepStatistics& stats
   }
 }
 
+void CoupledStep::interrupt_when(std::function<bool()> requested) {
+  interrupt_requested_ = std::move(requested);
+  // The fluids' inner iterations ask the same question, under the same condition.
+  for (FluidLoadModel* f : fluids_)
+    f->interrupt_when(interrupt_requested_ ? std::function<bool()>([this] { return may_abandon(); })
+                                           : std::function<bool()>{});
+}
+
+bool CoupledStep::may_abandon() const {
+  return committed_s_ == 0.0 && interrupt_requested_ && interrupt_requested_();
+}
+
 void CoupledStep::stop_if_interrupted() const {
   // A cut step whose first sub-steps are committed is finished instead: its state is no
   // longer the step's start, which is what a checkpoint (and a restart) must hold.
-  if (committed_s_ == 0.0 && interrupt_requested_ && interrupt_requested_())
+  if (may_abandon())
     throw StepInterrupted("the step was abandoned on request; the state is that of its start");
 }
 

@@ -45,7 +45,7 @@ class CoupledStep {
   /// StepInterrupted, the attempt rolled back, so long as no sub-step of a cut step has
   /// been committed yet (the state is then the step's start; otherwise the step goes on
   /// to its end). Empty (the default): never.
-  void interrupt_when(std::function<bool()> requested) { interrupt_requested_ = std::move(requested); }
+  void interrupt_when(std::function<bool()> requested);
   /// The intact bonds of the mechanics (also read by the load ramp).
   const BondList& bonds() const { return bonds_; }
 
@@ -80,6 +80,8 @@ class CoupledStep {
   const std::vector<char>& pressurised_points();
   /// Throws StepInterrupted if a stop was requested and the step may still be abandoned.
   void stop_if_interrupted() const;
+  /// A stop was requested and the step may still be abandoned (nothing of it committed).
+  bool may_abandon() const;
 
   dda::BlockSystem& mechanics_;
   std::vector<FluidLoadModel*> fluids_;

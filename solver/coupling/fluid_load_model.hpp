@@ -7,6 +7,7 @@
 // correcting the mechanical displacement through the factorised K (respond).
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "core/step_statistics.hpp"
@@ -33,6 +34,9 @@ class FluidLoadModel {
   virtual void roll_back() = 0;
   /// Adds the model's counters of the step just committed.
   virtual void add_statistics(StepStatistics&) const {}
+  /// Asked by long inner iterations (the flow solve's Newton iterations); true makes them
+  /// throw StepInterrupted (CoupledStep::interrupt_when). Empty: never.
+  virtual void interrupt_when(std::function<bool()> /*requested*/) {}
 };
 
 }  // namespace hfdda::coupling

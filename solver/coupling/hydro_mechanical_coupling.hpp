@@ -69,6 +69,7 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   void commit(const dda::BlockSystem& system) override;
   void roll_back() override;
   void add_statistics(StepStatistics& step) const override;
+  void interrupt_when(std::function<bool()> requested) override { network_.interrupt_when(std::move(requested)); }
 
   /// Statistics of the last step attempt (committed or not).
   const CouplingStatistics& statistics() const { return stats_; }

@@ -241,7 +241,7 @@ FlowSolveStatistics FlowNetwork::solve(const Eigen::VectorXd& base, ApertureMode
     throw std::invalid_argument("FlowNetwork::solve: aperture model does not match the trial network");
   FlowSolveStatistics stats;
   if (n == 0) return stats;
-  MassBalanceSolver(trial_, fluid_, settings_, unknowns_).solve(base, s, stats);
+  MassBalanceSolver(trial_, fluid_, settings_, unknowns_, &interrupt_).solve(base, s, stats);
   const MassBalance balance(fluid_, trial_);
   MassBalance::Evaluation ev;
   balance.evaluate(unknowns_, base, s, ev, false);

@@ -52,6 +52,7 @@
 #include <array>
 #include <limits>
 #include <string>
+#include <functional>
 #include <vector>
 
 #include "fluid/aperture_model.hpp"
@@ -175,6 +176,8 @@ class FlowNetwork {
   int n_nodes() const;
   const FluidProperties& fluid() const { return fluid_; }
   const FlowSettings& settings() const { return settings_; }
+  /// Asked before every Newton iteration of the flow solve; true throws StepInterrupted.
+  void interrupt_when(std::function<bool()> requested) { interrupt_ = std::move(requested); }
 
   /// Everything a later step depends on (committed state, the warm start of the last
   /// trial, the mass ledger), for a checkpoint; restore_state() into a network built
@@ -194,6 +197,7 @@ class FlowNetwork {
   std::vector<Fracture> fractures_;
   FluidProperties fluid_;
   FlowSettings settings_;
+  std::function<bool()> interrupt_;
   std::vector<Injection> injections_;
   std::vector<char> vent_point_;  ///< per point, or empty: no vents
 

@@ -95,6 +95,8 @@ bool MassBalanceSolver::newton(const Eigen::VectorXd& base, ApertureModel& s, Fl
   Eigen::SparseMatrix<double> shifted;
   const int max_iterations = pseudo_transient ? 4 * settings_.max_newton_iterations : settings_.max_newton_iterations;
   for (int it = 0; it < max_iterations; ++it) try {
+    if (interrupt_ && *interrupt_ && (*interrupt_)())
+      throw StepInterrupted("the step was abandoned on request (in the flow solve); the state is that of its start");
     balance_.evaluate(x, base, s, ev, true);
     rescale_partly_filled_nodes(ev);
     progress.residual = std::max(0.0, ev.residual.cwiseAbs().maxCoeff() - round_off) / mass_scale;

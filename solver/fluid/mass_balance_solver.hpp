@@ -11,6 +11,8 @@
 // docs/design_notes.md sections 2, 3 and 23). Newton and its step modes are in
 // mass_balance_solver.cpp, the sequence of fallbacks in mass_balance_fallbacks.cpp.
 
+#include <functional>
+
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
@@ -40,9 +42,12 @@ class MassBalanceSolver {
   /// `unknowns` (one fill state per node) are the warm start and receive the solution.
   /// The solve may change the network's fill scales, and its floors (the last resort,
   /// kept for the rest of the step once it has converged).
+  /// `interrupt` (optional, may be empty) is asked before every Newton iteration: true
+  /// throws StepInterrupted (a stop requested while the solve runs).
   MassBalanceSolver(TrialNetwork& network, const FluidProperties& fluid, const FlowSettings& settings,
-                    Eigen::VectorXd& unknowns)
-      : network_(network), fluid_(fluid), settings_(settings), unknowns_(unknowns), balance_(fluid, network) {}
+                    Eigen::VectorXd& unknowns, const std::function<bool()>* interrupt = nullptr)
+      : network_(network), fluid_(fluid), settings_(settings), unknowns_(unknowns), balance_(fluid, network),
+        interrupt_(interrupt) {}
 
   /// Newton, then the fallbacks if needed; throws ConvergenceError.
   void solve(const Eigen::VectorXd& base, ApertureModel& s, FlowSolveStatistics& stats);
@@ -76,6 +81,7 @@ class MassBalanceSolver {
   const FlowSettings& settings_;
   Eigen::VectorXd& unknowns_;
   MassBalance balance_;
+  const std::function<bool()>* interrupt_;
 };
 
 }  // namespace hfdda::fluid

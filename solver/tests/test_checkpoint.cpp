@@ -173,8 +173,12 @@ TEST(Checkpoint, StepAbandonedMidwayRestartsBitForBit) {
   int steps_done = 0, asks = 0;
   asking.after_step = [&](const Model&, int step, double) { steps_done = step; };
   asking.abandon_step_requested = [&] { asks += steps_done == 3; return false; };
-  ASSERT_TRUE(run(counting, asking).completed);
+  const RunResult counted = run(counting, asking);
+  ASSERT_TRUE(counted.completed);
   ASSERT_GE(asks, 4) << "step 4 must iterate for the late stop to follow contact changes";
+  // The step asks before each open-close round and each later contact iteration (as
+  // many as its contact iterations), and the flow solves before each Newton iteration.
+  EXPECT_GT(asks, counted.record.value(3, "alm_iterations")) << "the flow solve does not ask";
   expect_abandoned_step_restart_matches(config, "abandoned_early", 2);    // in the first contact iterations
   expect_abandoned_step_restart_matches(config, "abandoned_late", asks);  // its last open-close round
 }
