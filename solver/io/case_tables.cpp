@@ -271,7 +271,9 @@ const Table<FractureConfig>& fracture_table() {
                 "§3.2: the two fractures on either side of the injection point were "
                 "initially opened",
                 "its open joints hold fluid (at `initial_pressure`) and belong to the flow "
-                "network from t = 0; needs a `fluid` section"},
+                "network from t = 0; needs a `fluid` section. A network of hundreds of such joints "
+                "at zero pressure may not get through its first flow solve: start it at a pressure "
+                "with `initial_opening: elastic` (docs/when_a_run_stops.md)"},
                &FractureConfig::fluid_filled),
        number({"initial_width", "m", "",
                "initial aperture of its fluid-filled joints; 0: the minimum width "
