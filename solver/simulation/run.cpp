@@ -199,7 +199,7 @@ RunResult run(Model& model, const RunOptions& options) {
   // last trial, kept in a checkpoint so that a restart repeats the same iterates) is the
   // abandoned attempt's last iterate: the network's state at the step's start is kept
   // (a few vectors per node and joint) and put back before the checkpoint is written.
-  const bool may_abandon = files && options.abandon_step_requested && !model.ramp && model.flow;
+  const bool keep_flow_start = files && options.abandon_step_requested && !model.ramp && model.flow;
   std::string flow_at_step_start;
   // Time stepping to end_time, or one step per load level of a load ramp.
   LoadRamp* ramp = model.ramp.get();
@@ -211,7 +211,7 @@ RunResult run(Model& model, const RunOptions& options) {
   for (int step = result.steps + 1; ramp ? ramp->has_next() : step <= n_steps; ++step) {
     const double t = step * time.dt_s;
     if (ramp) model.system->set_load_level(ramp->next_level());
-    if (may_abandon) {
+    if (keep_flow_start) {
       BinaryWriter out(std::move(flow_at_step_start));
       model.flow->save_state(out);
       flow_at_step_start = out.take_bytes();
@@ -223,7 +223,7 @@ RunResult run(Model& model, const RunOptions& options) {
       check_fields_finite(*model.system, model.flow.get(), step);
     } catch (const StepInterrupted&) {
       // The attempt was rolled back to the step's start; so is the flow's warm start.
-      if (may_abandon) {
+      if (keep_flow_start) {
         BinaryReader in(flow_at_step_start);
         model.flow->restore_state(in);
       }

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -82,10 +83,30 @@ void expect_same_state(const Model& a, const Model& b) {
   EXPECT_TRUE(same_bits(a.flow->time(), b.flow->time()));
 }
 
-/// Continues the run stopped in `dir` from its checkpoint in a fresh model: it must end
-/// as the run never stopped (`full`, written to `full_dir`) did, bit for bit.
-void expect_continued_run_matches(const io::CaseConfig& config, const Model& full, const RunResult& reference,
-                                  const fs::path& full_dir, const fs::path& dir) {
+/// Runs the case through (the reference), and again with the stop that `stop` sets up,
+/// which must end the run after `steps` steps with a checkpoint (`check` then looks at
+/// the stopped run and its directory); the run continued from that checkpoint in a fresh
+/// model must end as the reference did, bit for bit.
+void expect_stopped_run_continues(const io::CaseConfig& config, const std::string& name, int steps,
+                                  const std::function<void(RunOptions&)>& stop,
+                                  const std::function<void(const RunResult&, const fs::path&)>& check = {}) {
+  Model full = build_model(config);
+  const fs::path full_dir = test_dir(name + "_full");
+  const RunResult reference = run(full, {full_dir.string(), true, false});
+  ASSERT_TRUE(reference.completed) << reference.message;
+  ASSERT_GT(reference.steps, steps + 1);
+
+  const fs::path dir = test_dir(name + "_restarted");
+  Model first = build_model(config);
+  RunOptions stopping{dir.string(), true, false};
+  stop(stopping);
+  const RunResult stopped = run(first, stopping);
+  ASSERT_TRUE(stopped.interrupted) << stopped.message;
+  EXPECT_FALSE(stopped.completed);
+  EXPECT_EQ(stopped.steps, steps);
+  ASSERT_TRUE(fs::exists(checkpoint_path(dir.string())));
+  if (check) check(stopped, dir);
+
   Model second = build_model(config);
   RunOptions restarting{dir.string(), true, false};
   restarting.restart = true;
@@ -98,31 +119,35 @@ void expect_continued_run_matches(const io::CaseConfig& config, const Model& ful
   expect_same_records(reference.record, continued.record);
   expect_same_state(full, second);
   EXPECT_EQ(file_text(full_dir / "joints" / "joints_final.csv"), file_text(dir / "joints" / "joints_final.csv"));
-}
-
-/// Runs the case through, and again stopped after `stop_after` steps and continued from
-/// the checkpoint in a fresh model; both must agree bit for bit.
-void expect_restart_matches(const io::CaseConfig& config, const std::string& name, int stop_after) {
-  Model full = build_model(config);
-  const fs::path full_dir = test_dir(name + "_full");
-  const RunResult reference = run(full, {full_dir.string(), true, false});
-  ASSERT_TRUE(reference.completed) << reference.message;
-  ASSERT_GT(reference.steps, stop_after + 1);
-
-  const fs::path dir = test_dir(name + "_restarted");
-  Model first = build_model(config);
-  RunOptions stopping{dir.string(), true, false};
-  int asked = 0;
-  stopping.stop_requested = [&] { return ++asked == stop_after; };
-  const RunResult stopped = run(first, stopping);
-  ASSERT_TRUE(stopped.interrupted);
-  EXPECT_FALSE(stopped.completed);
-  EXPECT_EQ(stopped.steps, stop_after);
-  ASSERT_TRUE(fs::exists(checkpoint_path(dir.string())));
-
-  expect_continued_run_matches(config, full, reference, full_dir, dir);
   fs::remove_all(full_dir);
   fs::remove_all(dir);
+}
+
+/// Stopped after `stop_after` steps (asked after each step) and continued.
+void expect_restart_matches(const io::CaseConfig& config, const std::string& name, int stop_after) {
+  int asked = 0;
+  expect_stopped_run_continues(config, name, stop_after, [&](RunOptions& o) {
+    o.stop_requested = [&asked, stop_after] { return ++asked == stop_after; };
+  });
+}
+
+/// A stop asked inside step 4 at the `ask`-th time it is asked: the step is abandoned,
+/// rolled back to its start, and the checkpoint is that of step 3.
+void expect_abandoned_step_restart_matches(const io::CaseConfig& config, const std::string& name, int ask) {
+  int steps_done = 0, asked_in_step_4 = 0;
+  expect_stopped_run_continues(
+      config, name, 3,
+      [&](RunOptions& o) {
+        o.trace_iterations = true;
+        o.after_step = [&steps_done](const Model&, int step, double) { steps_done = step; };
+        o.abandon_step_requested = [&, ask] { return steps_done == 3 && ++asked_in_step_4 == ask; };
+      },
+      [&](const RunResult& stopped, const fs::path& dir) {
+        EXPECT_EQ(asked_in_step_4, ask) << "the stop was asked inside step 4";
+        EXPECT_NE(stopped.message.find("abandoned on request"), std::string::npos) << stopped.message;
+        EXPECT_NE(file_text(dir / "iterations.csv").find("abandoned on request"), std::string::npos)
+            << "the trace ends the abandoned attempt with the reason";
+      });
 }
 
 TEST(Checkpoint, KgdContinuesBitForBit) {
@@ -130,37 +155,6 @@ TEST(Checkpoint, KgdContinuesBitForBit) {
       io::load_case_file(std::string(HFDDA_TEST_DATA_DIR) + "/cases/restart_kgd.yaml");
   expect_restart_matches(config, "kgd_after_wetting", 3);  // joints were wetted in step 3
   expect_restart_matches(config, "kgd_before_wetting", 5);
-}
-
-/// Runs the case through, and again with a stop asked inside step 4 at the `ask`-th time
-/// it is asked: the step is abandoned, rolled back to its start, the checkpoint is that
-/// of step 3, and the run continued from it is the run never stopped, bit for bit.
-void expect_abandoned_step_restart_matches(const io::CaseConfig& config, const std::string& name, int ask) {
-  Model full = build_model(config);
-  const fs::path full_dir = test_dir(name + "_full");
-  const RunResult reference = run(full, {full_dir.string(), true, false});
-  ASSERT_TRUE(reference.completed) << reference.message;
-
-  const fs::path dir = test_dir(name);
-  Model first = build_model(config);
-  RunOptions stopping{dir.string(), true, false};
-  stopping.trace_iterations = true;
-  int steps_done = 0, asked_in_step_4 = 0;
-  stopping.after_step = [&](const Model&, int step, double) { steps_done = step; };
-  stopping.abandon_step_requested = [&] { return steps_done == 3 && ++asked_in_step_4 == ask; };
-  const RunResult stopped = run(first, stopping);
-  ASSERT_TRUE(stopped.interrupted) << stopped.message;
-  EXPECT_FALSE(stopped.completed);
-  EXPECT_EQ(asked_in_step_4, ask) << "the stop was asked inside step 4";
-  EXPECT_EQ(stopped.steps, 3);
-  EXPECT_NE(stopped.message.find("abandoned on request"), std::string::npos) << stopped.message;
-  ASSERT_TRUE(fs::exists(checkpoint_path(dir.string())));
-  EXPECT_NE(file_text(dir / "iterations.csv").find("abandoned on request"), std::string::npos)
-      << "the trace ends the abandoned attempt with the reason";
-
-  expect_continued_run_matches(config, full, reference, full_dir, dir);
-  fs::remove_all(full_dir);
-  fs::remove_all(dir);
 }
 
 TEST(Checkpoint, StepAbandonedMidwayRestartsBitForBit) {
