@@ -70,6 +70,7 @@ def draw_map(ax, rows, title, inlet):
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_title(title, fontsize=9)
+    return {"joints": len(rows), "natural": len(natural), "open": len(opened), "invaded": len(invaded)}
 
 
 def main(argv):
@@ -102,12 +103,16 @@ def main(argv):
     for step, path in chosen:
         t = time_of_step.get(step, 0.0)
         fig, ax = plt.subplots(figsize=(6, 6))
-        draw_map(ax, read_rows(path), f"{os.path.basename(os.path.normpath(run_dir))}: t = {t:g} s (step {step})", inlet)
+        counts = draw_map(ax, read_rows(path),
+                          f"{os.path.basename(os.path.normpath(run_dir))}: t = {t:g} s (step {step})", inlet)
         name = os.path.join(out_dir, f"fracture_map_t{t:g}.png")
         fig.tight_layout()
         fig.savefig(name, dpi=120)
         plt.close(fig)
         print(name)
+        # What the map shows, so that a reader (or a test) need not open the picture.
+        print(f"  t = {t:g} s: {counts['joints']} joints drawn: {counts['natural']} natural (thin), "
+              f"{counts['open']} open (thick), {counts['invaded']} closed with fluid (light)")
 
     columns = history[0].keys() if history else []
     time = [float(r["time_s"]) for r in history]
@@ -119,6 +124,10 @@ def main(argv):
                 "slipped_length_natural_m") if c in columns]
     if lengths:
         panels.append(("length [m]", lengths))
+    ledger = [(c, 1.0, c.replace("mass_", "").replace("_kg", "")) for c in
+              ("mass_injected_kg", "mass_stored_kg", "mass_vented_kg", "mass_leaked_kg") if c in columns]
+    if ledger:
+        panels.append(("fluid mass [kg]", ledger))
     if "mass_volume_error" in columns:
         panels.append(("relative mass error [-]", [("mass_volume_error", 1.0, "volume check"),
                                                   ("mass_balance_error", 1.0, "ledger")]))

@@ -58,7 +58,9 @@ constexpr const char* kUsage =
     "       the same results as a run that was never stopped.\n"
     "check  validates CASE.yaml and builds its mesh without writing anything.\n"
     "plot   draws a run directory's fracture map at the output nearest each time (default: the\n"
-    "       last) and its histories, as PNG files in FIGDIR (default DIR/figures).\n"
+    "       last: natural fractures thin, open joints thick, closed joints with fluid light) and its\n"
+    "       histories (inlet pressure, opened and invaded lengths by joint kind, the fluid mass\n"
+    "       ledger), as PNG files in FIGDIR (default DIR/figures).\n"
     "network  builds the mesh of CASE.yaml and grows the natural fractures of its fracture_sets\n"
     "       (seed 5.3), without running anything, and writes DIR/network.csv (joints of each\n"
     "       fracture), DIR/network_fractures.csv, DIR/network_sets.csv, DIR/network.vtu (every\n"
@@ -224,6 +226,9 @@ int run_command(int argc, char** argv, bool check_only) {
     std::fprintf(stderr, "%s: %d blocks, %zu joints, %zu points, %d steps of %g s\n", case_file.c_str(),
                  system.n_blocks(), system.mesh().joints.size(), system.mesh().points.size(),
                  static_cast<int>(config.time.end_time_s / config.time.dt_s + 0.5), config.time.dt_s);
+  if (const std::string note = hfdda::simulation::fracture_adjustments_note(config, system.mesh());
+      !note.empty() && (check_only || !quiet))
+    std::fprintf(stderr, "%s: %s\n", case_file.c_str(), note.c_str());
   if (check_only) return 0;
 
   hfdda::simulation::RunOptions options{out_dir, quiet, true};
@@ -328,6 +333,8 @@ int network_command(int argc, char** argv) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "%s: %zu blocks, %zu joints; network seed %d\n", case_file.c_str(),
                fractured.mesh.blocks.size(), fractured.mesh.joints.size(), config.network_seed);
+  if (const std::string note = hfdda::simulation::fracture_adjustments_note(config, fractured.mesh); !note.empty())
+    std::fprintf(stderr, "%s: %s\n", case_file.c_str(), note.c_str());
   for (std::size_t k = 0; k < config.fracture_sets.size(); ++k) {
     const auto& s = fractured.network.sets[k];
     std::fprintf(stderr,

@@ -126,6 +126,7 @@ void check_lengths(const CaseConfig& c, const MergedChecker& m) {
   } else {
     area_at_most("mesh.max_area_inner", c.mesh.max_area_inner_m2);
     if (c.domain.inner) area_at_most("mesh.max_area_outer", c.mesh.max_area_outer_m2);
+    length("mesh.snap_tolerance", c.mesh.snap_tolerance_m);
   }
   length("contact.vertex_vertex_activation", c.contact.vertex_vertex_activation_m);
   for (std::size_t i = 0; i < c.fractures.size(); ++i) {

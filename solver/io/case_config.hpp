@@ -38,6 +38,7 @@ struct MeshConfig {
   double max_area_inner_m2 = 1.0;
   double max_area_outer_m2 = 10.0;
   double min_angle_deg = 25.0;
+  double snap_tolerance_m = 0.0;  ///< feature ends this near another feature meet it (0: rounding only)
   int line = 0;  ///< case-file line of the `mesh` section, for mesh errors
 };
 
@@ -101,6 +102,8 @@ struct FractureConfig {
   /// rock's opening under initial_pressure (coupling/initial_opening.hpp).
   InitialOpening initial_opening = InitialOpening::width;
   double initial_pressure_Pa = 0.0;   ///< initial fluid pressure of fluid-filled joints
+  /// Rows of a fracture map that reached past domain.outer: the length cut off there [m].
+  double clipped_length_m = 0.0;
   int line = 0;                       ///< case-file line, for error messages
 };
 

@@ -56,7 +56,7 @@ const Table<MeshConfig>& mesh_table() {
   static const Table<MeshConfig> table{
       "`mesh`",
       "`cell_size`, `outer_growth` and `split` apply to structured meshes; `max_area_inner`, "
-      "`max_area_outer` and `min_angle` to Delaunay meshes.",
+      "`max_area_outer`, `min_angle` and `snap_tolerance` to Delaunay meshes.",
       {choice({"type", "", "§3.1 grid; §3.3, §5.2 constrained Delaunay",
                "structured grid or constrained Delaunay triangulation"},
               &MeshConfig::kind,
@@ -81,7 +81,12 @@ const Table<MeshConfig>& mesh_table() {
                "largest triangle area outside the inner rectangle"},
               &MeshConfig::max_area_outer_m2, greater_than(0), kAreaWithinDomain),
        number({"min_angle", "deg", "", "minimum triangle angle of the Delaunay refinement"},
-              &MeshConfig::min_angle_deg, interval(0, true, 30, false))}};
+              &MeshConfig::min_angle_deg, interval(0, true, 30, false)),
+       number({"snap_tolerance", "m", "",
+               "fracture ends closer than this to another fracture or to a side of the domain are moved onto "
+               "it (digitised near-misses made to meet; each move is reported in summary.json); 0: 5e-7 of "
+               "the domain's diagonal"},
+              &MeshConfig::snap_tolerance_m, at_least(0), kWithinDomain)}};
   return table;
 }
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -26,9 +27,10 @@ const Table<FractureMapConfig>& map_table() {
       "optionally, `set` (a label) and per-row `tensile_strength` [Pa], `cohesion` [Pa], "
       "`friction_angle` [deg], `hydraulic_width` [m], which override the map's values. Every "
       "row becomes a fracture named `<name>.<row>`; on a Delaunay mesh it is a constraint, "
-      "crossing segments are split where they meet and ends within 5e-7 of the domain's "
-      "diagonal of another segment are snapped onto it. Zero-length, duplicate and "
-      "outside-the-domain rows are errors naming the CSV line.",
+      "crossing segments are split where they meet, ends within `mesh.snap_tolerance` of another "
+      "segment or of the domain's side are snapped onto it, and a row reaching past domain.outer keeps "
+      "its part inside (summary.json lists what was snapped and cut). Zero-length, duplicate and "
+      "wholly outside rows are errors naming the CSV line.",
       {text({"name", "", "", "label of the map; rows are named <name>.<row>"}, &M::name),
        required(Field<M>{key_doc({"file", "", "§5.3: natural fracture networks", "CSV file, relative to the case file"},
                         "string", "none", "a readable CSV file"),
@@ -67,6 +69,35 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   }
   if (!line.empty() && line.back() == ',') cells.emplace_back();
   return cells;
+}
+
+/// The part of segment a-b inside r (Liang and Barsky's parametric clipping), with an end
+/// that was cut put exactly on the side that cut it; nullopt when nothing is inside.
+std::optional<std::pair<Vec2, Vec2>> clip_to(const Rect& r, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  double t0 = 0.0, t1 = 1.0;
+  int side0 = -1, side1 = -1;  // 0 xmin, 1 xmax, 2 ymin, 3 ymax
+  const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
+  const double q[4] = {a.x() - r.xmin, r.xmax - a.x(), a.y() - r.ymin, r.ymax - a.y()};
+  for (int k = 0; k < 4; ++k) {
+    if (p[k] == 0.0) {
+      if (q[k] < 0.0) return std::nullopt;  // parallel to this side and outside it
+      continue;
+    }
+    const double t = q[k] / p[k];
+    if (p[k] < 0.0 && t > t0) t0 = t, side0 = k;
+    if (p[k] > 0.0 && t < t1) t1 = t, side1 = k;
+  }
+  if (t0 >= t1) return std::nullopt;
+  auto on_side = [&](double t, int side) {
+    Vec2 x = a + t * d;
+    if (side == 0) x.x() = r.xmin;
+    if (side == 1) x.x() = r.xmax;
+    if (side == 2) x.y() = r.ymin;
+    if (side == 3) x.y() = r.ymax;
+    return x;
+  };
+  return std::make_pair(side0 < 0 ? a : on_side(t0, side0), side1 < 0 ? b : on_side(t1, side1));
 }
 
 }  // namespace
@@ -132,7 +163,16 @@ void append_fracture_map_lines(CaseConfig& config) {
       f.from = Vec2(*number("x1"), *number("y1"));
       f.to = Vec2(*number("x2"), *number("y2"));
       if ((f.to - f.from).norm() <= tol) fail("x2", "zero-length segment (its ends coincide)");
-      if (!outer.contains(f.from, tol) || !outer.contains(f.to, tol)) fail("x1", "segment outside domain.outer");
+      if (!outer.contains(f.from, tol) || !outer.contains(f.to, tol)) {
+        // A row reaching past the domain keeps its part inside (its end put exactly on the
+        // side it crosses); one with nothing inside is an error.
+        const double full = (f.to - f.from).norm();
+        const std::optional<std::pair<Vec2, Vec2>> inside = clip_to(outer, f.from, f.to);
+        if (!inside || (inside->second - inside->first).norm() <= tol)
+          fail("x1", "segment outside domain.outer (nothing of it lies inside)");
+        std::tie(f.from, f.to) = *inside;
+        f.clipped_length_m = full - (f.to - f.from).norm();
+      }
       const auto key = f.from.x() < f.to.x() || (f.from.x() == f.to.x() && f.from.y() < f.to.y())
                            ? std::make_tuple(f.from.x(), f.from.y(), f.to.x(), f.to.y())
                            : std::make_tuple(f.to.x(), f.to.y(), f.from.x(), f.from.y());

@@ -45,10 +45,10 @@ using Cdt = CGAL::Constrained_triangulation_plus_2<CdtBase>;
 // Above this the standard Delaunay refinement has no termination guarantee even for
 // inputs without small angles (Shewchuk's Triangle works up to about 33 degrees).
 constexpr double kMaxMinAngleDeg = 33.0;
-/// Feature ends this close to another feature (relative to the domain's diagonal) are
-/// snapped onto it: 5e-7 of a 141 m diagonal is 0.07 mm, far below any joint length and
-/// far above the rounding of written or digitised coordinates.
-constexpr double kSnapTolerance = 5e-7;
+/// Unless the case gives a snap tolerance, feature ends this close to another feature
+/// (relative to the domain's diagonal) are snapped onto it: 5e-7 of a 141 m diagonal is
+/// 0.07 mm, far below any joint length and far above the rounding of written coordinates.
+constexpr double kDefaultSnapTolerance = 5e-7;
 
 using detail::num;
 
@@ -71,6 +71,8 @@ void validate(const DelaunayMeshSpec& spec) {
   require(spec.min_angle_deg >= 0.0 && spec.min_angle_deg <= kMaxMinAngleDeg,
           "min_angle_deg = " + num(spec.min_angle_deg) + " must be in [0, " +
               num(kMaxMinAngleDeg) + "]");
+  require(std::isfinite(spec.snap_tolerance_m) && spec.snap_tolerance_m >= 0.0,
+          "snap_tolerance_m = " + num(spec.snap_tolerance_m) + " must be >= 0");
   const double tol = 1e-9 * std::hypot(spec.outer.width(), spec.outer.height());
   for (const LineFeature& f : spec.constraints) {
     const std::string name = "line feature '" + f.name + "'";
@@ -346,8 +348,13 @@ Mesh build_delaunay_mesh(const DelaunayMeshSpec& input) {
   if (input.has_inner) add_sides(input.inner);
   DelaunayMeshSpec spec = input;
   const double diagonal = std::hypot(spec.outer.width(), spec.outer.height());
-  JoinedFeatures joined = join_line_features(input.constraints, sides, kSnapTolerance * diagonal);
+  const double snap_m = spec.snap_tolerance_m > 0.0 ? spec.snap_tolerance_m : kDefaultSnapTolerance * diagonal;
+  JoinedFeatures joined = join_line_features(input.constraints, sides, snap_m);
   spec.constraints = std::move(joined.features);
+  for (const LineFeature& piece : spec.constraints)
+    require((piece.to - piece.from).norm() > 1e-9 * diagonal,
+            "line feature '" + piece.name + "' shrinks to a point when its ends are snapped (snap tolerance " +
+                num(snap_m) + " m); give a smaller snap tolerance or remove the feature");
   reject_near_misses(spec);
   Cdt cdt;
   insert_rectangle(cdt, spec.outer);
@@ -357,8 +364,8 @@ Mesh build_delaunay_mesh(const DelaunayMeshSpec& input) {
     feature_of_constraint[insert_feature(cdt, spec.constraints[k], spec.outer)] = joined.source_feature[k];
   refine(cdt, spec);
   Mesh mesh = extract_mesh(cdt, feature_of_constraint);
-  mesh.snapped_feature_ends = joined.snapped_ends;
-  mesh.largest_feature_snap_m = joined.largest_snap_m;
+  mesh.feature_snaps = std::move(joined.snaps);
+  mesh.feature_snap_tolerance_m = snap_m;
   return mesh;
 }
 

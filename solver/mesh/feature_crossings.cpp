@@ -103,8 +103,7 @@ JoinedFeatures join_line_features(const std::vector<LineFeature>& features,
         }
         if (target != original) {
           p = target;
-          ++out.snapped_ends;
-          out.largest_snap_m = std::max(out.largest_snap_m, (target - original).norm());
+          out.snaps.push_back({features[i].name, end, original, target, (target - original).norm()});
         }
       }
   }

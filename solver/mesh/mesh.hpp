@@ -61,16 +61,25 @@ struct FeatureEdge {
   int feature = -1;
 };
 
+/// A line-feature end moved onto another feature (or a side of the domain) because it
+/// missed it by less than the snap tolerance: a digitised near-miss made to meet exactly.
+struct FeatureSnap {
+  std::string feature;  ///< name of the feature whose end moved
+  int end = 0;          ///< 0: its `from` end, 1: its `to` end
+  Vec2 from{0, 0}, to{0, 0};
+  double moved_m = 0.0;  ///< |to - from| [m]
+};
+
 struct Mesh {
   std::vector<Vec2> points;
   /// Delaunay meshes: every edge of every line feature, from the constraint the
   /// triangulation kept for it while refining (no geometric search). Sorted by feature.
   std::vector<FeatureEdge> feature_edges;
   bool has_feature_edges = false;  ///< feature_edges is authoritative (a Delaunay mesh)
-  /// Delaunay meshes: line-feature ends snapped onto others (join_line_features) and the
-  /// largest move [m].
-  int snapped_feature_ends = 0;
-  double largest_feature_snap_m = 0.0;
+  /// Delaunay meshes: line-feature ends snapped onto other features or the domain's
+  /// sides (join_line_features), each with where it was and where it went.
+  std::vector<FeatureSnap> feature_snaps;
+  double feature_snap_tolerance_m = 0.0;  ///< the tolerance they were snapped with [m]
   std::vector<Block> blocks;
   std::vector<Joint> joints;
   std::vector<BoundaryEdge> boundary_edges;
@@ -110,6 +119,9 @@ struct DelaunayMeshSpec {
   double max_area_inner_m2 = 1.0;
   double max_area_outer_m2 = 10.0;
   double min_angle_deg = 25.0;
+  /// Feature ends closer than this to another feature or to a side of the domain are
+  /// snapped onto it [m]; 0: 5e-7 of the outer rectangle's diagonal (rounding only).
+  double snap_tolerance_m = 0.0;
   std::vector<LineFeature> constraints;
 };
 
@@ -121,8 +133,7 @@ struct DelaunayMeshSpec {
 struct JoinedFeatures {
   std::vector<LineFeature> features;
   std::vector<int> source_feature;  ///< per joined feature: index of the input feature it is part of
-  int snapped_ends = 0;         ///< feature ends moved
-  double largest_snap_m = 0.0;  ///< the largest move [m]
+  std::vector<FeatureSnap> snaps;  ///< feature ends moved, in the features' order
   int splits = 0;               ///< cuts made at crossings and touching ends
 };
 JoinedFeatures join_line_features(const std::vector<LineFeature>& features,

@@ -389,6 +389,7 @@ mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
       // Without an inner rectangle, max_area_inner bounds the whole domain (docs/case_file.md).
       spec.max_area_outer_m2 = c.domain.inner ? c.mesh.max_area_outer_m2 : c.mesh.max_area_inner_m2;
       spec.min_angle_deg = c.mesh.min_angle_deg;
+      spec.snap_tolerance_m = c.mesh.snap_tolerance_m;
       for (const auto& f : c.fractures) spec.constraints.push_back({f.name, f.from, f.to, f.segment_length_m});
       m = mesh::build_delaunay_mesh(spec);
     }
@@ -398,6 +399,29 @@ mesh::Mesh build_case_mesh(const io::CaseConfig& c) {
     throw InputError(mesh_file, c.mesh.line, "mesh", e.what());
   }
   return m;
+}
+
+std::string fracture_adjustments_note(const io::CaseConfig& c, const mesh::Mesh& m) {
+  std::string note;
+  const io::FractureConfig* longest_cut = nullptr;
+  int cut = 0;
+  for (const io::FractureConfig& f : c.fractures)
+    if (f.clipped_length_m > 0.0) {
+      ++cut;
+      if (!longest_cut || f.clipped_length_m > longest_cut->clipped_length_m) longest_cut = &f;
+    }
+  if (cut > 0)
+    note += std::to_string(cut) + " fracture-map row(s) cut at domain.outer (longest cut " +
+            io::schema::format_number(longest_cut->clipped_length_m) + " m, " + longest_cut->name + ")";
+  if (!m.feature_snaps.empty()) {
+    const auto largest = std::max_element(m.feature_snaps.begin(), m.feature_snaps.end(),
+                                          [](const auto& a, const auto& b) { return a.moved_m < b.moved_m; });
+    if (!note.empty()) note += "; ";
+    note += std::to_string(m.feature_snaps.size()) + " fracture end(s) snapped onto another fracture or the " +
+            "domain's side within " + io::schema::format_number(m.feature_snap_tolerance_m) + " m (largest move " +
+            io::schema::format_number(largest->moved_m) + " m, " + largest->feature + ")";
+  }
+  return note;
 }
 
 std::vector<networks::FractureSetSettings> fracture_set_settings(const io::CaseConfig& c) {

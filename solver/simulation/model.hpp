@@ -82,6 +82,11 @@ FracturedMesh build_fractured_mesh(const io::CaseConfig& config, ParameterSample
 /// Same, drawing from the case's `random_seed`.
 FracturedMesh build_fractured_mesh(const io::CaseConfig& config);
 
+/// What meshing changed of the case's fractures, in one line for the terminal: rows of
+/// fracture maps cut at domain.outer and fracture ends snapped onto others (the longest
+/// of each named); empty when nothing changed. summary.json lists every one.
+std::string fracture_adjustments_note(const io::CaseConfig& config, const mesh::Mesh& mesh);
+
 /// The generator settings of the case's fracture sets (seed 5.3).
 std::vector<networks::FractureSetSettings> fracture_set_settings(const io::CaseConfig& config);
 

@@ -76,6 +76,19 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
                {"points", system.mesh().points.size()},
                {"unknowns", 6 * system.n_blocks()},
                {"build_ms", model.mesh_seconds_ms}};
+  {
+    // What meshing changed of the fractures: digitised near-misses snapped, map rows cut.
+    const mesh::Mesh& m = system.mesh();
+    nlohmann::json snaps = nlohmann::json::array(), cuts = nlohmann::json::array();
+    for (const mesh::FeatureSnap& s : m.feature_snaps)
+      snaps.push_back({{"fracture", s.feature}, {"end", s.end == 0 ? "from" : "to"},
+                       {"from", {s.from.x(), s.from.y()}}, {"to", {s.to.x(), s.to.y()}}, {"moved_m", s.moved_m}});
+    for (const io::FractureConfig& f : model.config.fractures)
+      if (f.clipped_length_m > 0.0) cuts.push_back({{"fracture", f.name}, {"removed_m", f.clipped_length_m}});
+    j["mesh"]["snap_tolerance_m"] = m.feature_snap_tolerance_m;
+    j["mesh"]["snapped_fracture_ends"] = snaps;
+    j["mesh"]["fracture_rows_cut_at_domain"] = cuts;
+  }
   nlohmann::json& solver = j["solver"];
   solver["contact_method"] = system.settings().augmented_lagrangian ? "augmented_lagrangian" : "penalty";
   for (const SummaryField& f : summary_solver_fields()) {

@@ -15,6 +15,7 @@
 
 #include "core/errors.hpp"
 #include "io/case_config.hpp"
+#include "simulation/checkpoint.hpp"
 #include "simulation/model.hpp"
 
 namespace hfdda::io {
@@ -72,7 +73,8 @@ TEST(FractureMaps, BadRowsNameTheCsvLine) {
   expect_csv_error("x1,y1,x2,y2,dip\n", 1, "(header)", "unknown column 'dip'");
   expect_csv_error("x1,y1,x2,y2\n0,0,1,1\n\n2,2,2,2\n", 4, "x2", "zero-length");
   expect_csv_error("x1,y1,x2,y2\n0,0,1,1\n1,1,0,0\n", 3, "x1", "duplicate of the segment on line 2");
-  expect_csv_error("x1,y1,x2,y2\n0,0,1,1\n0,0,1,11\n", 3, "x1", "outside domain.outer");
+  expect_csv_error("x1,y1,x2,y2\n0,0,1,1\n11,0,12,1\n", 3, "x1", "outside domain.outer");
+  expect_csv_error("x1,y1,x2,y2\n0,0,1,1\n10,-12,10,-11\n", 3, "x1", "outside domain.outer");
   expect_csv_error("x1,y1,x2,y2\n0,0,1,1x\n", 2, "y2", "not a finite number");
   expect_csv_error("x1,y1,x2,y2\n0,0,1\n", 2, "(row)", "3 cells");
   expect_csv_error("x1,y1,x2,y2\n", 1, "(rows)", "no segment");
@@ -140,7 +142,7 @@ TEST(FractureMaps, EveryFractureOfADenseMapOwnsItsJoints) {
   const simulation::Model model = simulation::build_model(c);
   const auto& mesh = model.system->mesh();
   ASSERT_TRUE(mesh.has_feature_edges);
-  EXPECT_GE(mesh.snapped_feature_ends, 1);
+  EXPECT_GE(mesh.feature_snaps.size(), 1u);
   std::vector<double> owned(c.fractures.size(), 0.0);
   for (const auto& e : mesh.feature_edges) owned[e.feature] += (mesh.points[e.point_q] - mesh.points[e.point_p]).norm();
   for (std::size_t f = 0; f < c.fractures.size(); ++f)
@@ -148,6 +150,55 @@ TEST(FractureMaps, EveryFractureOfADenseMapOwnsItsJoints) {
   int natural = 0;
   for (const auto& j : mesh.joints) natural += j.properties.natural;
   EXPECT_GE(natural, 400);
+}
+
+TEST(FractureMaps, RowsReachingPastTheDomainAreCutAtItsSide) {
+  // An outcrop map larger than the model: each row keeps its part inside domain.outer,
+  // its cut end exactly on the side, and the cut is reported; rows inside are unchanged.
+  TempDir dir;
+  dir.write("map.csv", "x1,y1,x2,y2\n-14,0,6,0\n3,-4,3,4\n-5,5,15,15\n");
+  const CaseConfig c = load_case_file(dir.write("case.yaml", kCase));
+  ASSERT_EQ(c.fractures.size(), 3u);
+  EXPECT_EQ(c.fractures[0].from, Vec2(-10, 0));
+  EXPECT_EQ(c.fractures[0].to, Vec2(6, 0));
+  EXPECT_NEAR(c.fractures[0].clipped_length_m, 4.0, 1e-12);
+  EXPECT_EQ(c.fractures[1].clipped_length_m, 0.0);
+  EXPECT_EQ(c.fractures[2].to, Vec2(5, 10));  // y = 7.5 + x / 2 leaves through y = 10 at x = 5
+  EXPECT_NEAR(c.fractures[2].clipped_length_m, std::hypot(20.0, 10.0) - std::hypot(10.0, 5.0), 1e-12);
+  const simulation::Model model = simulation::build_model(c);
+  const std::string note = simulation::fracture_adjustments_note(c, model.system->mesh());
+  EXPECT_NE(note.find("2 fracture-map row(s) cut at domain.outer"), std::string::npos) << note;
+}
+
+TEST(FractureMaps, NearMissesWithinTheStatedToleranceAreSnappedAndNamed) {
+  // A digitised row that stops 4 mm short of another: left apart at the default
+  // tolerance (rounding only), made to meet at a stated 1 cm, and reported by name.
+  TempDir dir;
+  dir.write("map.csv", "x1,y1,x2,y2\n-6,0,6,0\n2,-5,2,-0.004\n");
+  const simulation::Model apart = simulation::build_model(load_case_file(dir.write("case.yaml", kCase)));
+  EXPECT_TRUE(apart.system->mesh().feature_snaps.empty());
+  const CaseConfig c = load_case_file(dir.write("stated.yaml", "extends: case.yaml\nmesh: {snap_tolerance: 0.01}\n"));
+  const simulation::Model met = simulation::build_model(c);
+  const auto& snaps = met.system->mesh().feature_snaps;
+  ASSERT_EQ(snaps.size(), 1u);
+  EXPECT_EQ(snaps[0].feature, "nf.2");
+  EXPECT_EQ(snaps[0].to, Vec2(2, 0));
+  EXPECT_NEAR(snaps[0].moved_m, 0.004, 1e-12);
+  const std::string note = simulation::fracture_adjustments_note(c, met.system->mesh());
+  EXPECT_NE(note.find("1 fracture end(s) snapped"), std::string::npos) << note;
+  EXPECT_NE(note.find("nf.2"), std::string::npos) << note;
+}
+
+TEST(FractureMaps, TheMapIsPartOfTheRestartFingerprint) {
+  // A restart checks that the case is the one checkpointed: a changed CSV value that does
+  // not move any joint (one row's cohesion) still changes the fingerprint.
+  TempDir dir;
+  dir.write("map.csv", "x1,y1,x2,y2,cohesion\n-5,0,5,0,1e6\n");
+  const std::string case_path = dir.write("case.yaml", kCase);
+  const std::uint64_t before = simulation::case_fingerprint(simulation::build_model(load_case_file(case_path)));
+  EXPECT_EQ(before, simulation::case_fingerprint(simulation::build_model(load_case_file(case_path))));
+  dir.write("map.csv", "x1,y1,x2,y2,cohesion\n-5,0,5,0,2e6\n");
+  EXPECT_NE(before, simulation::case_fingerprint(simulation::build_model(load_case_file(case_path))));
 }
 
 }  // namespace

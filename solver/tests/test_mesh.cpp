@@ -279,7 +279,26 @@ TEST(MeshDelaunay, FeaturesARoundingErrorApartAreJoinedAtOnePoint) {
   s.constraints = {{"a", Vec2(-2, 0), Vec2(0, 0), 0.5}, {"b", Vec2(0, 0), Vec2(1, 2), 0.5}};
   EXPECT_NO_THROW(build_delaunay_mesh(s));
   s.constraints = {{"a", Vec2(-2, 0), Vec2(0, 0), 0.5}, {"b", Vec2(0, 1e-3), Vec2(0, 2), 0.5}};
-  EXPECT_EQ(build_delaunay_mesh(s).snapped_feature_ends, 0);  // 1 mm apart: left apart
+  EXPECT_TRUE(build_delaunay_mesh(s).feature_snaps.empty());  // 1 mm apart: left apart
+  // With a stated tolerance of 2 mm the same 1 mm gap is a near-miss: a's end moves onto
+  // b's, and the move is reported with a's name.
+  s.snap_tolerance_m = 2e-3;
+  const Mesh joined = build_delaunay_mesh(s);
+  ASSERT_EQ(joined.feature_snaps.size(), 1u);
+  EXPECT_EQ(joined.feature_snaps[0].feature, "a");
+  EXPECT_EQ(joined.feature_snaps[0].end, 1);
+  EXPECT_EQ(joined.feature_snaps[0].to, Vec2(0, 1e-3));
+  EXPECT_NEAR(joined.feature_snaps[0].moved_m, 1e-3, 1e-15);
+  // A tolerance longer than a feature would collapse it (both ends onto b's end): refused,
+  // naming it.
+  s.constraints.push_back({"stub", Vec2(0.3, 0.3), Vec2(0.3, 0.31), 0.5});
+  s.snap_tolerance_m = 0.6;
+  try {
+    build_delaunay_mesh(s);
+    ADD_FAILURE() << "a feature snapped to a point was meshed";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("'stub' shrinks to a point"), std::string::npos) << e.what();
+  }
 }
 
 TEST(MeshDelaunay, CrossingFracturesCutIntoJointsMeetExactly) {
@@ -322,8 +341,10 @@ TEST(MeshDelaunay, CrossingFracturesCutIntoJointsMeetExactly) {
   s.constraints[1].to = Vec2(-22.5, -2e-5);
   s.constraints[1].from = Vec2(-22.5, -25);
   const Mesh snapped = build_delaunay_mesh(s);
-  EXPECT_EQ(snapped.snapped_feature_ends, 1);
-  EXPECT_NEAR(snapped.largest_feature_snap_m, 2e-5, 1e-12);
+  ASSERT_EQ(snapped.feature_snaps.size(), 1u);
+  EXPECT_EQ(snapped.feature_snaps[0].feature, "cross");
+  EXPECT_EQ(snapped.feature_snaps[0].end, 1);
+  EXPECT_NEAR(snapped.feature_snaps[0].moved_m, 2e-5, 1e-12);
   EXPECT_EQ((snapped.points[nearest_point(snapped, crossing)] - crossing).norm(), 0.0);
 }
 
