@@ -350,6 +350,16 @@ def render_case(case: dict, summ: dict, plot_result, figures: list[tuple[str, st
     if "error" in case:
         lines += [f"**Error:** {case['error']}", ""]
 
+    # Tables the case made for the reader (e.g. outcomes beside the experiment's and the seed's).
+    for t in case.get("tables") or []:
+        if not isinstance(t, dict) or not isinstance(t.get("header"), list) or not isinstance(t.get("rows"), list):
+            lines += ["*A table in result.json is malformed (needs title, header, rows) and is not shown.*", ""]
+            continue
+        lines += [f"### {t.get('title', 'Table')}", ""]
+        lines += table([cell(h) for h in t["header"]],
+                       [[cell(c) for c in row] for row in t["rows"] if isinstance(row, list)])
+        lines.append("")
+
     if summ["evals"]:
         rows = []
         for check, ev in zip(case["checks"], summ["evals"]):

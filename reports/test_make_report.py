@@ -172,6 +172,21 @@ class MakeReportTest(unittest.TestCase):
         self.assertFalse((self.out / "figures" / "old_case_fig.png").exists())
         self.assertTrue((self.out / "figures" / "network_scaling.png").exists())
 
+    def test_case_tables_shown_before_the_checks(self):
+        write_case(self.results, "delta", {
+            "case": "delta", "title": "Interaction modes", "seed_section": "5.2", "tier": "full",
+            "status": "fail", "checks": [check("modes matched", 1, 2, ">=")], "metrics": {},
+            "tables": [{"title": "Modes side by side", "header": ["test", "experiment", "ours"],
+                        "rows": [["CT1", "arrest", "**crossing** (missed)"], ["CT2", "a|b", 3.14159]]},
+                       {"title": "broken", "rows": "not a list"}]})
+        md = self.report()
+        self.assertIn("### Modes side by side", md)
+        self.assertIn("| test | experiment | ours |", md)
+        self.assertIn("| CT1 | arrest | **crossing** (missed) |", md)
+        self.assertIn("| CT2 | a\\|b | 3.142 |", md)
+        self.assertIn("A table in result.json is malformed", md)
+        self.assertLess(md.index("### Modes side by side"), md.index("### Checks"))
+
     def test_blas_kernels_stated_and_mixed_ones_flagged(self):
         self.add_two_cases()
         md = self.report()

@@ -33,6 +33,13 @@ constexpr double kBeyondDistance_m = 1.0e-3;
 /// to at least this fraction of the distance from the injection point to it.
 constexpr double kOpeningFraction = 0.5;
 
+/// A number for the report's table, with a fixed number of decimals.
+std::string format_fixed(double v, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v);
+  return text;
+}
+
 enum class Mode { crossing = 0, opening = 1, arrest = 2, none = 3 };
 
 const char* to_string(Mode m) {
@@ -306,6 +313,10 @@ void study_metrics(StudyOutcome& st) {
            "natural_opened_m,natural_invaded_m,natural_slipped_m,rock_beyond_m,time_s,wall_s\n";
   int tests = 0, matched = 0;
   double tests_wall_s = 0.0, map_wall_s = 0.0;
+  // The report's table of the eleven tests: Blanton's mode, the seed's and this run's.
+  nlohmann::json test_rows = nlohmann::json::array();
+  int table_matched = 0;
+  auto cm = [](double metres) { return std::isfinite(metres) ? format_fixed(100.0 * metres, 1) : std::string("-"); };
   for (VariantOutcome& o : st.variants) {
     const VariantSpec& v = o.variant();
     const std::string group = v.has("group") ? v.text("group") : "test";
@@ -320,6 +331,20 @@ void study_metrics(StudyOutcome& st) {
       tests_wall_s += o.run.run.wall_seconds;
     } else if (group == "map") {
       map_wall_s += o.run.run.wall_seconds;
+    }
+    if (group == "test" || group == "quick") {
+      const std::string blanton = v.has("blanton_mode") ? v.text("blanton_mode") : "";
+      const std::string test = (v.has("test_id") ? v.text("test_id") : v.name) +
+                               (v.name.find("map") != std::string::npos ? " (fracture map)" : "");
+      test_rows.push_back({test, format_fixed(v.number("theta_deg"), 0),
+                           format_fixed(v.number("sigma_max_Pa") / 1e6, 0) + " / " +
+                               format_fixed(v.number("sigma_min_Pa") / 1e6, 0),
+                           blanton, v.has("seed_mode") ? v.text("seed_mode") : "",
+                           mode == blanton ? mode : "**" + mode + "** (missed)",
+                           cm(number("natural_opened_m")) + " / " + cm(number("natural_invaded_m")) + " / " +
+                               cm(number("natural_slipped_m")),
+                           format_fixed(o.run.run.wall_seconds, 1)});
+      table_matched += mode == blanton;
     }
     char row[512];
     std::snprintf(row, sizeof row, "%s,%s,%s,%g,%g,%g,%g,%s,%s,%s,%g,%g,%g,%g,%g,%g\n", v.name.c_str(), group.c_str(),
@@ -344,6 +369,13 @@ void study_metrics(StudyOutcome& st) {
   st.metrics.numbers["map_wall_s"] = map_wall_s;
   st.metrics.json["modes_matched"] = matched;
   st.metrics.json["tests"] = tests;
+  if (!test_rows.empty())
+    st.metrics.tables.push_back(
+        {{"title", "Blanton's tests: his mode, the seed's and this run's (" + std::to_string(table_matched) + " of " +
+                       std::to_string(test_rows.size()) + " matched)"},
+         {"header", {"test", "theta [deg]", "sigma_max / sigma_min [MPa]", "Blanton", "seed", "HFDDA",
+                     "natural fracture opened / invaded / slipped [cm]", "wall [s]"}},
+         {"rows", test_rows}});
   st.metrics.json["tests_wall_s"] = tests_wall_s;
   st.metrics.json["map_wall_s"] = map_wall_s;
   st.metrics.files["modes.csv"] = modes.str();

@@ -614,6 +614,7 @@ int run_harness(int argc, char** argv, const CaseDefinition& def) {
     const auto figures = study.figures.find(tier);
     result["figures"] = figures != study.figures.end() ? nlohmann::json(figures->second) : nlohmann::json::array();
     result["notes"] = study.notes;
+    result["tables"] = outcome.metrics.tables;
     io::write_file_atomically(out_dir + "/result.json", result.dump(2) + "\n");
     std::fprintf(stderr, "%s: %s (gating checks %s)\n", study.case_name.c_str(),
                  all_match ? "all checks as expected" : "some checks missed", gating_match ? "pass" : "FAIL");

@@ -72,6 +72,9 @@ struct Metrics {
   nlohmann::json json = nlohmann::json::object();   ///< merged into result.json "metrics"
   std::map<std::string, std::string> files;         ///< file in the result directory -> text (plots)
   std::string summary;                              ///< one line for the log
+  /// Study level only: tables for the report (result.json "tables": title, header, rows
+  /// of text), e.g. a case's outcomes beside the experiment's and the seed's.
+  nlohmann::json tables = nlohmann::json::array();
 };
 
 struct VariantOutcome {
