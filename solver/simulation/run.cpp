@@ -85,8 +85,10 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
                        {"from", {s.from.x(), s.from.y()}}, {"to", {s.to.x(), s.to.y()}}, {"moved_m", s.moved_m}});
     for (const io::FractureConfig& f : model.config.fractures)
       if (f.clipped_length_m > 0.0) cuts.push_back({{"fracture", f.name}, {"removed_m", f.clipped_length_m}});
-    j["mesh"]["snap_tolerance_m"] = m.feature_snap_tolerance_m;
-    j["mesh"]["snapped_fracture_ends"] = snaps;
+    if (m.has_feature_edges) {  // a Delaunay mesh: its fractures were made to meet
+      j["mesh"]["snap_tolerance_m"] = m.feature_snap_tolerance_m;
+      j["mesh"]["snapped_fracture_ends"] = snaps;
+    }
     j["mesh"]["fracture_rows_cut_at_domain"] = cuts;
   }
   nlohmann::json& solver = j["solver"];
