@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "io/case_schema.hpp"
 #include "simulation/model_flow.hpp"
 
@@ -412,14 +413,14 @@ std::string fracture_adjustments_note(const io::CaseConfig& c, const mesh::Mesh&
     }
   if (cut > 0)
     note += std::to_string(cut) + " fracture-map row(s) cut at domain.outer (longest cut " +
-            io::schema::format_number(longest_cut->clipped_length_m) + " m, " + longest_cut->name + ")";
+            number_text(longest_cut->clipped_length_m) + " m, " + longest_cut->name + ")";
   if (!m.feature_snaps.empty()) {
     const auto largest = std::max_element(m.feature_snaps.begin(), m.feature_snaps.end(),
                                           [](const auto& a, const auto& b) { return a.moved_m < b.moved_m; });
     if (!note.empty()) note += "; ";
     note += std::to_string(m.feature_snaps.size()) + " fracture end(s) snapped onto another fracture or the " +
-            "domain's side within " + io::schema::format_number(m.feature_snap_tolerance_m) + " m (largest move " +
-            io::schema::format_number(largest->moved_m) + " m, " + largest->feature + ")";
+            "domain's side within " + number_text(m.feature_snap_tolerance_m) + " m (largest move " +
+            number_text(largest->moved_m) + " m, " + largest->feature + ")";
   }
   return note;
 }
