@@ -229,6 +229,8 @@ int run_command(int argc, char** argv, bool check_only) {
   if (const std::string note = hfdda::simulation::fracture_adjustments_note(config, system.mesh());
       !note.empty() && (check_only || !quiet))
     std::fprintf(stderr, "%s: %s\n", case_file.c_str(), note.c_str());
+  if (const std::string note = hfdda::simulation::initial_opening_note(model); !note.empty() && (check_only || !quiet))
+    std::fprintf(stderr, "%s: %s\n", case_file.c_str(), note.c_str());
   if (check_only) return 0;
 
   hfdda::simulation::RunOptions options{out_dir, quiet, true};

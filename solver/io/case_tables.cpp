@@ -289,7 +289,9 @@ const Table<FractureConfig>& fracture_table() {
                "where the initial aperture of its fluid-filled joints comes from: width (initial_width, the "
                "rock not yet opened, so that in the first steps the fluid is squeezed out under the closing "
                "limit) or elastic (the opening of the rock under initial_pressure and the loads of the first "
-               "step, one solve before it: the fluid starts in equilibrium; docs/design_notes.md section 31)"},
+               "step, from steps before it repeated until no joint end moves by more than 1 % of its "
+               "aperture, at most 10: the fluid starts in equilibrium; summary.json initial_opening says how "
+               "it settled; docs/design_notes.md section 31)"},
               &FractureConfig::initial_opening,
               Choices<InitialOpening>{{"width", InitialOpening::width}, {"elastic", InitialOpening::elastic}}),
        number({"initial_pressure", "Pa",

@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cmath>
 #include <limits>
@@ -14,6 +15,7 @@
 
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
+#include "coupling/initial_opening.hpp"
 #include "io/case_schema.hpp"
 #include "simulation/model_flow.hpp"
 
@@ -423,6 +425,21 @@ std::string fracture_adjustments_note(const io::CaseConfig& c, const mesh::Mesh&
             number_text(largest->moved_m) + " m, " + largest->feature + ")";
   }
   return note;
+}
+
+std::string initial_opening_note(const Model& model) {
+  if (!model.initial_opening) return "";
+  const InitialOpeningSummary& s = *model.initial_opening;
+  std::string note = "initial_opening: elastic: " + std::to_string(s.steps) + " step(s) before t = 0";
+  if (!std::isnan(s.last_relative_change)) {
+    char change[32];
+    std::snprintf(change, sizeof change, "%.2g", s.last_relative_change);
+    note += std::string(", the last changing an aperture by at most ") + change + " of it";
+  }
+  if (s.settled) return note + " (settled)";
+  note += s.growing ? "; not settled: the changes grew, so the last step was taken back"
+                    : "; not settled within " + std::to_string(coupling::kMaxSettlingSteps) + " steps";
+  return note + " (the first steps may squeeze fluid out; docs/design_notes.md section 31)";
 }
 
 std::vector<networks::FractureSetSettings> fracture_set_settings(const io::CaseConfig& c) {

@@ -6,6 +6,7 @@
 // line and key, before anything is written.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,15 @@ struct FracturedMesh {
   networks::FractureNetwork network;     ///< the generated fractures (none without fracture_sets)
 };
 
+/// How the steps before t = 0 of fractures with `initial_opening: elastic` settled
+/// (coupling/initial_opening.hpp).
+struct InitialOpeningSummary {
+  int steps = 0;                      ///< steps before t = 0 kept
+  double last_relative_change = 0.0;  ///< largest change of a joint end in the last one (NaN: one step)
+  bool settled = false;
+  bool growing = false;  ///< stopped because the changes grew (that step put back)
+};
+
 struct Model {
   /// The case as run: the keys drawn once per run hold their draws (parameter_sampling.hpp).
   io::CaseConfig config;
@@ -64,6 +74,8 @@ struct Model {
   std::unique_ptr<coupling::CoupledStep> step;
   /// The load levels of a case with a `load_ramp` (null otherwise: time stepping to end_time).
   std::unique_ptr<LoadRamp> ramp;
+  /// Set when some fracture starts with `initial_opening: elastic`.
+  std::optional<InitialOpeningSummary> initial_opening;
 };
 
 /// Builds the mesh and the block system of a case, drawing the keys given as
@@ -86,6 +98,9 @@ FracturedMesh build_fractured_mesh(const io::CaseConfig& config);
 /// fracture maps cut at domain.outer and fracture ends snapped onto others (the longest
 /// of each named); empty when nothing changed. summary.json lists every one.
 std::string fracture_adjustments_note(const io::CaseConfig& config, const mesh::Mesh& mesh);
+/// How the steps before t = 0 of `initial_opening: elastic` fractures settled, in one line
+/// for the terminal; empty when the case has none. summary.json gives the same.
+std::string initial_opening_note(const Model& model);
 
 /// The generator settings of the case's fracture sets (seed 5.3).
 std::vector<networks::FractureSetSettings> fracture_set_settings(const io::CaseConfig& config);

@@ -119,11 +119,13 @@ void open_by_initial_pressure(Model& model, const InitialFill& fill) {
   coupling::InitialOpening opening;
   try {
     opening = coupling::open_by_initial_pressure(*model.system, joints, c.time.dt_s, c.numerics.max_step_cuts,
-                                                 fracture_rules(c));
+                                                 fracture_rules(c), c.numerics.min_width_main_m);
   } catch (const ConvergenceError& e) {
     throw ModelError(where + ": the rock did not reach equilibrium with the initial pressure in the step before "
                      "t = 0: " + std::string(e.what()));
   }
+  model.initial_opening = InitialOpeningSummary{opening.steps, opening.last_relative_change, opening.settled,
+                                                opening.growing};
   if (opening.step.bonds_broken > 0)
     throw ModelError(where + ": the initial pressure breaks " + std::to_string(opening.step.bonds_broken) +
                      " bond(s) before t = 0; lower initial_pressure or start the fracture longer");

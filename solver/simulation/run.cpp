@@ -14,6 +14,7 @@
 
 #include "core/binary_io.hpp"
 #include "core/errors.hpp"
+#include "coupling/initial_opening.hpp"
 #include "io/output.hpp"
 #include "simulation/checkpoint.hpp"
 #include "simulation/field_checks.hpp"
@@ -90,6 +91,15 @@ void write_summary(const Model& model, const RunOptions& options, const RunResul
       j["mesh"]["snapped_fracture_ends"] = snaps;
     }
     j["mesh"]["fracture_rows_cut_at_domain"] = cuts;
+  }
+  if (const auto& start = model.initial_opening) {
+    // The steps before t = 0 that opened the `initial_opening: elastic` fractures.
+    j["initial_opening"] = {{"steps", start->steps},
+                            {"settled", start->settled},
+                            {"stopped_on_growing_changes", start->growing},
+                            {"settled_change", coupling::kSettledChange}};
+    j["initial_opening"]["last_relative_change"] =
+        std::isnan(start->last_relative_change) ? nlohmann::json(nullptr) : nlohmann::json(start->last_relative_change);
   }
   nlohmann::json& solver = j["solver"];
   solver["contact_method"] = system.settings().augmented_lagrangian ? "augmented_lagrangian" : "penalty";
