@@ -19,7 +19,8 @@ N over CPU at 1). --comparison adds a Markdown section (benchmarks/compare_basel
 after the header.
 
 --scaling adds the section "Network scaling" from a run of bench_network_scaling: per
-flow-Jacobian path and size, wetted nodes, blocks, CPU and wall time per coupled step,
+flow-Jacobian path (dense, krylov, and dense-cf, krylov-cf with a lumped face load and
+frictionless faces) and size, wetted nodes, blocks, CPU and wall time per coupled step,
 one factorisation of K and their ratio, Newton and Krylov iterations, peak memory; the
 exponent of time per step in wetted nodes fitted by least squares on log-log (sizes
 >= 1,000 wetted nodes, and all sizes), the targets (at most N^1.2 from 1,000 to 10,000
@@ -239,7 +240,9 @@ def render_file(path: Path) -> tuple[list[str], bool]:
 
 SCALING_BEGIN = "<!-- network-scaling:begin -->"
 SCALING_END = "<!-- network-scaling:end -->"
-SCALING_NAME = re.compile(r"BM_NetworkScaling/ribs:(\d+)/krylov:([01])")
+SCALING_NAME = re.compile(r"BM_NetworkScaling/ribs:(\d+)/krylov:([01])(?:/conjugate_frictionless:([01]))?")
+# The paths in report order, indexed by krylov + 2 conjugate_frictionless (absent: 0, runs before it had it).
+SCALING_PATHS = ("dense", "krylov", "dense-cf", "krylov-cf")
 SCALING_FIGURE = "figures/network_scaling.png"
 TARGET_EXPONENT = 1.2            # time per step at most N^1.2 ...
 TARGET_NODES = (1000, 10000)     # ... from 1,000 to 10,000 wetted nodes
@@ -253,7 +256,7 @@ def fishbone_nodes(ribs: int) -> int:
 
 
 def scaling_rows(benches: list[dict]) -> list[dict]:
-    """One row per path and size: measured counters, or the error that stopped it."""
+    """One row per path and size: measured counters, or the error that stopped it; in path order."""
     rows = []
     for b in select_rows(benches):
         m = SCALING_NAME.search(str(b.get("name", "")))
@@ -261,10 +264,16 @@ def scaling_rows(benches: list[dict]) -> list[dict]:
             continue
         ribs = int(m.group(1))
         row = {k: float(v) for k, v in b.items() if is_number(v) and k not in STANDARD_KEYS}
-        row.update({"path": "krylov" if m.group(2) == "1" else "dense", "ribs": ribs, "error": failed(b),
+        path = SCALING_PATHS[int(m.group(2)) + 2 * int(m.group(3) or 0)]
+        row.update({"path": path, "ribs": ribs, "error": failed(b),
                     "nodes": int(b["wetted_nodes"]) if is_number(b.get("wetted_nodes")) else fishbone_nodes(ribs)})
         rows.append(row)
-    return sorted(rows, key=lambda r: (r["path"] != "dense", r["nodes"]))
+    return sorted(rows, key=lambda r: (SCALING_PATHS.index(r["path"]), r["nodes"]))
+
+
+def present_paths(rows: list[dict]) -> list[str]:
+    """The paths with at least one row (measured or not), in report order."""
+    return [p for p in SCALING_PATHS if any(r["path"] == p for r in rows)]
 
 
 def fit_power_law(points: list[tuple[float, float]]) -> tuple[float, float] | None:
@@ -287,7 +296,7 @@ def scaling_fits(rows: list[dict]) -> dict:
     """Per path: the exponent of CPU time per step over sizes >= 1,000 wetted nodes and over
     all sizes, with the node range and count of sizes of each fit."""
     fits = {}
-    for path in ("dense", "krylov"):
+    for path in present_paths(rows):
         ok = measured(rows, path)
         for label, subset in (("from_1000", [r for r in ok if r["nodes"] >= TARGET_NODES[0]]), ("all", ok)):
             fit = fit_power_law([(r["nodes"], r["step_cpu_s"]) for r in subset])
@@ -305,7 +314,7 @@ def n_fmt(n: float) -> str:
 
 def time_verdict(rows: list[dict], fits: dict) -> list[str]:
     lines = []
-    for path in ("dense", "krylov"):
+    for path in present_paths(rows):
         fit = fits.get((path, "from_1000"))
         ok = measured(rows, path)
         largest = max((r["nodes"] for r in ok), default=0)
@@ -331,7 +340,7 @@ def time_verdict(rows: list[dict], fits: dict) -> list[str]:
 
 def memory_verdict(rows: list[dict]) -> list[str]:
     lines = []
-    for path in ("dense", "krylov"):
+    for path in present_paths(rows):
         ok = measured(rows, path)
         big = [r for r in ok if r["nodes"] >= MEMORY_TARGET_NODES and is_number(r.get("peak_rss_mb"))]
         if big:
@@ -351,19 +360,20 @@ def memory_verdict(rows: list[dict]) -> list[str]:
 
 def scaling_observations(rows: list[dict]) -> list[str]:
     """Per path, from the smallest to the largest measured size: Newton iterations per step,
-    and the share of building S (dense) in the step's wall time at the largest."""
+    and the share of building S (dense paths) or Krylov iterations per Newton iteration (krylov
+    paths) at the largest."""
     lines = []
-    for path in ("dense", "krylov"):
+    for path in present_paths(rows):
         ok = measured(rows, path)
         if len(ok) < 2:
             continue
         first, last = ok[0], ok[-1]
         text = (f"- {path}: Newton iterations per step {fmt(first.get('newton_per_step'))} at "
                 f"{n_fmt(first['nodes'])} wetted nodes, {fmt(last.get('newton_per_step'))} at {n_fmt(last['nodes'])}")
-        if path == "dense" and is_number(last.get("sensitivity_s_per_step")) and last.get("step_s"):
+        if path.startswith("dense") and is_number(last.get("sensitivity_s_per_step")) and last.get("step_s"):
             text += (f"; building S took {100 * last['sensitivity_s_per_step'] / last['step_s']:.0f} % of the wall "
                      f"time per step at {n_fmt(last['nodes'])}")
-        if path == "krylov" and last.get("newton_per_step"):
+        if path.startswith("krylov") and last.get("newton_per_step"):
             text += (f"; {last.get('krylov_per_step', 0) / last['newton_per_step']:.0f} Krylov iterations per Newton "
                      f"iteration at {n_fmt(last['nodes'])}")
         lines.append(text + ".")
@@ -379,9 +389,12 @@ def draw_scaling_figure(rows: list[dict], fits: dict, cap_s: float | None, path:
     except ImportError as e:  # the report stays standard-library only
         return f"matplotlib unavailable ({e})"
     fig, ax = plt.subplots(figsize=(10.0, 5.0))
-    styles = {"dense": ("tab:blue", "o"), "krylov": ("tab:orange", "s")}
-    all_nodes = [r["nodes"] for r in rows]
-    for p, (colour, marker) in styles.items():
+    # Per path: colour, marker, and where its sizes not measured are drawn relative to the cap line
+    # (above and below it in turn, so that all paths show).
+    styles = zip(SCALING_PATHS, ("tab:blue", "tab:orange", "tab:green", "tab:red"), ("o", "s", "^", "D"),
+                 (1.25, 0.8, 1.5, 0.65))
+    all_nodes, present = [r["nodes"] for r in rows], present_paths(rows)
+    for p, colour, marker, cap_factor in (s for s in styles if s[0] in present):
         ok = measured(rows, p)
         if ok:
             ax.loglog([r["nodes"] for r in ok], [r["step_cpu_s"] for r in ok], marker=marker, color=colour,
@@ -398,11 +411,9 @@ def draw_scaling_figure(rows: list[dict], fits: dict, cap_s: float | None, path:
                           alpha=0.6, label=f"{p}: fit {'all sizes' if label == 'all' else '>= 1,000'}: "
                                            f"N^{fit['exponent']:.2f}")
         if cap_s:
-            # Just above (dense) and below (krylov) the cap line, so that both paths show.
             stopped = [r["nodes"] for r in rows if r["path"] == p and r["error"] is not None]
             if stopped:
-                level = cap_s * (1.25 if p == "dense" else 0.8)
-                ax.loglog(stopped, [level] * len(stopped), linestyle="none", marker="x", color=colour,
+                ax.loglog(stopped, [cap_s * cap_factor] * len(stopped), linestyle="none", marker="x", color=colour,
                           label=f"{p}: not measured (over the cap or not started), drawn at the cap")
     measured_rows = [r for r in rows if r["error"] is None and is_number(r.get("step_cpu_s"))]
     if measured_rows:
@@ -442,6 +453,7 @@ def scaling_section(results: Path, figure_path: Path | None) -> tuple[list[str],
     except (TypeError, ValueError):
         cap_s = None
     load = ", ".join(fmt(x) for x in ctx["load_avg"]) if isinstance(ctx.get("load_avg"), list) else "?"
+    cf = any(p.endswith("-cf") for p in present_paths(rows))
     lines += [
         f"From `{results.name}` (`benchmarks/bench_network_scaling.cpp`, run by `scripts/bench --scaling`): "
         f"run {ctx.get('date', '?')}, host {ctx.get('host_name', '?')} ({ctx.get('num_cpus', '?')} CPUs, "
@@ -457,11 +469,16 @@ def scaling_section(results: Path, figure_path: Path | None) -> tuple[list[str],
         "`bench_network_scaling.cpp`. Per size, in a process of its own: one untimed warm-up step, then "
         f"{ctx.get('timed_steps', '?')} timed steps, then one factorisation of K (`assemble_and_factorise`, "
         f"median of 3). A size is stopped when one phase (model build, a step) uses more than "
-        f"{cap if cap is not None else '?'} s of CPU time, and the larger sizes of its path are then not started.",
+        f"{cap if cap is not None else '?'} s of CPU time, and the larger sizes of its path are then not started."
+        + (" Paths marked -cf run the same networks with the fluid's face load lumped at the joint ends "
+           "(`numerics.fluid_load: lumped`, the load work-conjugate to the lumped nodal volumes, design notes "
+           "section 19) and frictionless fracture faces (`friction_angle: 0`, design notes section 31); the others "
+           "with the seed's integrated face load and 30-degree friction." if cf else ""),
         "",
         "Times are CPU seconds of the process (one thread), the measure used for the fits and the ratio: the "
         "machine is shared, and a busy neighbour stretches wall time (given beside it) more than CPU time. "
-        "Iterations are per timed step; Krylov iterations and products with S count on the krylov path only "
+        "Iterations are per timed step; Krylov iterations and products with S count on the krylov "
+        f"{'paths' if cf else 'path'} only "
         "and cover the last attempt of a step that was cut. Memory is the peak resident set of the size's "
         "process.",
         ""]
@@ -494,7 +511,7 @@ def scaling_section(results: Path, figure_path: Path | None) -> tuple[list[str],
     lines += ["Fitted exponent a of CPU time per step ~ N^a (least squares on log-log):", "",
               "| path | sizes >= 1,000 wetted nodes | all sizes | one factorisation of K, all sizes |",
               "|---|---|---|---|"]
-    for p in ("dense", "krylov"):
+    for p in present_paths(rows):
         cells = []
         for label in ("from_1000", "all"):
             f = fits.get((p, label))

@@ -84,13 +84,15 @@ class MakeBenchmarksTest(unittest.TestCase):
 
 
 def scaling_benchmark(ribs: int, krylov: int, step_cpu_s: float = 0.0, peak_rss_mb: float = 0.0,
-                      error: str | None = None) -> dict:
-    """A row of bench_network_scaling's JSON (fishbone network: 24 ribs^2 + 1 wetted nodes)."""
-    name = f"BM_NetworkScaling/ribs:{ribs}/krylov:{krylov}/iterations:1/manual_time"
+                      error: str | None = None, cf: int | None = None) -> dict:
+    """A row of bench_network_scaling's JSON (fishbone network: 24 ribs^2 + 1 wetted nodes);
+    cf None: a name without the conjugate_frictionless argument (runs from before it)."""
+    arg = "" if cf is None else f"/conjugate_frictionless:{cf}"
+    name = f"BM_NetworkScaling/ribs:{ribs}/krylov:{krylov}{arg}/iterations:1/manual_time"
     b = {"name": name, "run_name": name, "run_type": "iteration", "family_index": 1,
-         "per_family_instance_index": ribs + 100 * krylov, "repetitions": 1, "repetition_index": 0,
-         "threads": 1, "iterations": 1, "real_time": 1.3 * step_cpu_s, "cpu_time": 0.01, "time_unit": "s",
-         "label": "krylov" if krylov else "dense"}
+         "per_family_instance_index": ribs + 100 * krylov + 200 * (cf or 0), "repetitions": 1,
+         "repetition_index": 0, "threads": 1, "iterations": 1, "real_time": 1.3 * step_cpu_s, "cpu_time": 0.01,
+         "time_unit": "s", "label": ("krylov" if krylov else "dense") + ("-cf" if cf else "")}
     if error is not None:
         b.update({"error_occurred": True, "error_message": error, "real_time": 0.0})
         return b
@@ -173,6 +175,73 @@ class NetworkScalingTest(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             md = "\n".join(make_benchmarks.scaling_section(write_scaling(Path(tmp) / "s.json", run), None)[0])
         self.assertIn("- **dense: missed**: 10,585 wetted nodes peaked at 5,200 MB.", md)
+
+    def test_four_paths(self):
+        # dense (names without the argument and with conjugate_frictionless:0): N^1.5; krylov: N^1.1 up to
+        # 4,705 wetted nodes; dense-cf: N^1.3 up to 10,585 in 3 GB; krylov-cf: 97 measured, 217 over the cap.
+        n = lambda ribs: 24 * ribs * ribs + 1  # noqa: E731
+        run = [scaling_benchmark(7, 0, 1e-3 * n(7) ** 1.5, 210.0),
+               scaling_benchmark(9, 0, 1e-3 * n(9) ** 1.5, 420.0, cf=0),
+               scaling_benchmark(7, 1, 1e-2 * n(7) ** 1.1, 200.0, cf=0),
+               scaling_benchmark(14, 1, 1e-2 * n(14) ** 1.1, 900.0, cf=0),
+               scaling_benchmark(7, 0, 1e-3 * n(7) ** 1.3, 300.0, cf=1),
+               scaling_benchmark(21, 0, 1e-3 * n(21) ** 1.3, 3000.0, cf=1),
+               scaling_benchmark(2, 1, 0.5, 72.0, cf=1),
+               scaling_benchmark(3, 1, error="over the time cap: warm-up step 1 used 121 s CPU", cf=1)]
+        rows = make_benchmarks.scaling_rows(run)
+        self.assertEqual([(r["path"], r["ribs"]) for r in rows],
+                         [("dense", 7), ("dense", 9), ("krylov", 7), ("krylov", 14), ("dense-cf", 7),
+                          ("dense-cf", 21), ("krylov-cf", 2), ("krylov-cf", 3)])
+        with tempfile.TemporaryDirectory() as tmp:
+            figure = Path(tmp) / make_benchmarks.SCALING_FIGURE
+            md = "\n".join(make_benchmarks.scaling_section(write_scaling(Path(tmp) / "s.json", run), figure)[0])
+            self.assertTrue(figure.is_file() or "Figure not drawn: matplotlib unavailable" in md)
+        self.assertEqual(md.count("Paths marked -cf run the same networks with the fluid's face load lumped at the "
+                                  "joint ends (`numerics.fluid_load: lumped`, the load work-conjugate to the lumped "
+                                  "nodal volumes, design notes section 19) and frictionless fracture faces "
+                                  "(`friction_angle: 0`, design notes section 31); the others with the seed's "
+                                  "integrated face load and 30-degree friction."), 1)
+        self.assertIn("count on the krylov paths only", md)
+        self.assertIn("| dense-cf | 21 | 10,585 | 63,510 |", md)
+        self.assertIn("| krylov-cf | 2 | 97 | 582 | 0.5 |", md)
+        self.assertIn("- krylov-cf, 3 ribs (217 wetted nodes): over the time cap: warm-up step 1", md)
+        self.assertIn("- dense-cf: Newton iterations per step 250 at 1,177 wetted nodes, 250 at 10,585; building S "
+                      "took 38 % of the wall time per step at 10,585.", md)
+        self.assertIn("- krylov: Newton iterations per step 250 at 1,177 wetted nodes, 250 at 4,705; 10 Krylov "
+                      "iterations per Newton iteration at 4,705.", md)
+        fits = ["| dense | 1.50 (2 sizes, 1,177-1,945) | 1.50 (2 sizes, 1,177-1,945) | 1.00 |",
+                "| krylov | 1.10 (2 sizes, 1,177-4,705) | 1.10 (2 sizes, 1,177-4,705) | 1.00 |",
+                "| dense-cf | 1.30 (2 sizes, 1,177-10,585) | 1.30 (2 sizes, 1,177-10,585) | 1.00 |",
+                "| krylov-cf | not measured (fewer than 2 sizes) | not measured (fewer than 2 sizes) |  |"]
+        times = ["- **dense: missed**: exponent 1.50 against 1.2 (2 sizes, 1,177 to 1,945 wetted nodes).",
+                 "- **krylov: met up to 4,705 wetted nodes, not measured beyond**: exponent 1.10 against 1.2",
+                 "- **dense-cf: missed**: exponent 1.30 against 1.2 (2 sizes, 1,177 to 10,585 wetted nodes).",
+                 "- **krylov-cf: not met (not measured)**: no size with 1,000 or more wetted nodes ran"]
+        memory = ["- **dense: not measured**: no size with 10,000 or more wetted nodes ran within the cap "
+                  "(largest measured: 1,945 wetted nodes at 420 MB).",
+                  "- **krylov: not measured**: no size with 10,000 or more wetted nodes ran within the cap "
+                  "(largest measured: 4,705 wetted nodes at 900 MB).",
+                  "- **dense-cf: met**: 10,585 wetted nodes peaked at 3,000 MB.",
+                  "- **krylov-cf: not measured**: no size with 10,000 or more wetted nodes ran within the cap "
+                  "(largest measured: 97 wetted nodes at 72 MB)."]
+        for lines in (fits, times, memory):  # one line per path, in the order of the paths
+            self.assertEqual([md.count(line) for line in lines], [1, 1, 1, 1])
+            self.assertEqual(sorted(lines, key=md.index), lines)
+
+    def test_old_runs_have_no_cf_path(self):
+        # Names without conjugate_frictionless (the committed run): dense and krylov only, no -cf sentence.
+        with tempfile.TemporaryDirectory() as tmp:
+            md = "\n".join(make_benchmarks.scaling_section(write_scaling(Path(tmp) / "s.json", self.RUN), None)[0])
+        self.assertEqual({r["path"] for r in make_benchmarks.scaling_rows(self.RUN)}, {"dense", "krylov"})
+        self.assertNotIn("-cf", md)
+        self.assertIn("count on the krylov path only", md)
+        # A path without rows is left out: a dense-only run has no krylov line.
+        with tempfile.TemporaryDirectory() as tmp:
+            md = "\n".join(make_benchmarks.scaling_section(write_scaling(Path(tmp) / "s.json", self.RUN[:4]),
+                                                           None)[0])
+        self.assertIn("| dense | 1.50 (2 sizes, 1,177-1,945) |", md)
+        self.assertNotIn("krylov:", md)
+        self.assertNotIn("| krylov |", md)
 
     def test_section_rewritten_in_place_with_figure(self):
         with tempfile.TemporaryDirectory() as tmp:
