@@ -33,21 +33,75 @@ struct TwoLevel {
 
 ApertureOperator::ApertureOperator(const dda::BlockSystem& system, const std::vector<dda::JointEndGap>& gaps,
                                    const std::vector<std::vector<NodeLoad>>& loads,
-                                   const std::vector<std::array<int, 2>>& nodes_of_fracture)
+                                   const std::vector<std::array<int, 2>>& nodes_of_fracture, int near_hops)
     : system_(system), gaps_(gaps), loads_(loads) {
   build_aggregates(nodes_of_fracture);
-  // S P: one solve with as many right-hand sides as aggregates.
+  if (near_hops > 0) build_near_field(nodes_of_fracture, near_hops);
+  // S P and the probes of the near field: one solve with as many right-hand sides as
+  // aggregates and colours.
   const int m = n_aggregates(), nb = system_.n_blocks();
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(6 * nb, m);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(6 * nb, m + n_colours_);
   for (int i = 0; i < n_nodes(); ++i)
-    for (const NodeLoad& l : loads_[i]) rhs.block<6, 1>(6 * l.block, aggregate_[i]) += l.force;
+    for (const NodeLoad& l : loads_[i]) {
+      rhs.block<6, 1>(6 * l.block, aggregate_[i]) += l.force;
+      if (n_colours_ > 0) rhs.block<6, 1>(6 * l.block, m + colour_[i]) += l.force;
+    }
   const Eigen::MatrixXd x = system_.solver().solve(rhs);
   s_times_p_.resize(n_ends(), m);
   for (int e = 0; e < n_ends(); ++e) {
     const auto& g = gaps_[e];
-    s_times_p_.row(e) = g.row_a * x.middleRows<6>(6 * g.block_a) + g.row_b * x.middleRows<6>(6 * g.block_b);
+    const Eigen::RowVectorXd row =
+        g.row_a * x.middleRows<6>(6 * g.block_a) + g.row_b * x.middleRows<6>(6 * g.block_b);
+    s_times_p_.row(e) = row.head(m);
+    if (n_colours_ > 0)
+      for (auto& [node, entry] : near_[e]) entry = row[m + colour_[node]];
   }
   rhs_.setZero(6 * nb);
+}
+
+void ApertureOperator::build_near_field(const std::vector<std::array<int, 2>>& nodes_of_fracture, int near_hops) {
+  const int n = n_nodes();
+  std::vector<std::vector<int>> neighbours(n);
+  for (const auto& [a, b] : nodes_of_fracture) {
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  }
+  // Nodes within `hops` of `start` (breadth-first), into `found`.
+  std::vector<int> seen(n, -1);
+  int search = 0;  // stamps the nodes each search has found
+  auto within = [&](int start, int hops, std::vector<int>& found) {
+    ++search;
+    found.assign(1, start);
+    seen[start] = search;
+    for (std::size_t head = 0, level_end = 1, level = 0; head < found.size() && level < std::size_t(hops); ++level) {
+      for (; head < level_end; ++head)
+        for (int j : neighbours[found[head]])
+          if (seen[j] != search) {
+            seen[j] = search;
+            found.push_back(j);
+          }
+      level_end = found.size();
+    }
+  };
+  colour_.assign(n, -1);
+  n_colours_ = 0;
+  std::vector<int> found;
+  std::vector<char> used;
+  for (int i = 0; i < n; ++i) {
+    within(i, 2 * near_hops, found);
+    used.assign(n_colours_ + 1, 0);
+    for (int j : found)
+      if (colour_[j] >= 0) used[colour_[j]] = 1;
+    int c = 0;
+    while (used[c]) ++c;
+    colour_[i] = c;
+    n_colours_ = std::max(n_colours_, c + 1);
+  }
+  near_.assign(n_ends(), {});
+  for (int e = 0; e < n_ends(); ++e) {
+    within(nodes_of_fracture[e / 2][e % 2], near_hops, found);
+    for (int j : found) near_[e].push_back({j, 0.0});
+  }
 }
 
 void ApertureOperator::build_aggregates(const std::vector<std::array<int, 2>>& nodes_of_fracture) {
@@ -106,7 +160,22 @@ void ApertureOperator::factorize(const Eigen::SparseMatrix<double>& a, const Eig
                                  const Eigen::VectorXd& d) {
   a_ = a, e_ = e, d_ = d;
   const int n = n_nodes(), m = n_aggregates();
-  local_lu_.compute(a_);
+  if (n_colours_ > 0) {
+    // Local part with the probed near field of S: A + E S_near diag(d). A probe also
+    // carries the responses to the colour's far nodes (more than near_hops away); the
+    // preconditioner only needs to be close to J, not equal to it.
+    std::vector<Eigen::Triplet<double>> near;
+    for (int k = 0; k < e_.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(e_, k); it; ++it)
+        for (const auto& [node, entry] : near_[it.col()])
+          if (d_[node] != 0.0) near.emplace_back(it.row(), node, it.value() * entry * d_[node]);
+    Eigen::SparseMatrix<double> local(n, n);
+    local.setFromTriplets(near.begin(), near.end());
+    local += a_;
+    local_lu_.compute(local);
+  } else {
+    local_lu_.compute(a_);
+  }
   if (local_lu_.info() != Eigen::Success) throw ConvergenceError("fluid flow: singular local part of the mass-balance Jacobian");
   // Coarse: P^T A P + P^T E (S P) diag(d_c).
   d_coarse_.setZero(m);

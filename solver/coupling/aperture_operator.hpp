@@ -11,12 +11,19 @@
 //           per factorisation of K (one multi-right-hand-side solve), and
 //           J_c = P^T A P + P^T E (S P) diag(d_c), d_c the mean of d per aggregate,
 //           is factorised densely (it is small);
-//   local:  the sparse part A alone (storage, leak-off and flow between nodes),
-//           factorised by sparse LU; it resolves what varies from node to node, the
-//           coarse part the smooth far-field coupling that elasticity adds.
-// Applied multiplicatively: y = P J_c^-1 P^T v, then y + A^-1 (v - J_c-model of y).
+//   local:  the sparse part A (storage, leak-off and flow between nodes) plus the near
+//           field of the elastic coupling, E S_near diag(d), factorised by sparse LU;
+//           S_near holds S(end, node) for the nodes within kNearHops of the end's node
+//           along the network, probed with one right-hand side per colour of a
+//           colouring that puts nodes of a colour more than 2 kNearHops apart (so each
+//           end sees one near node per colour); it resolves what varies from node to
+//           node, the coarse part the smooth far-field coupling.
+// Applied multiplicatively: y = P J_c^-1 P^T v, then y + L^-1 (v - J_c-model of y), L
+// the local part.
 // On a model crack (docs/design_notes.md, "Flow Jacobian") GMRES then needs 10-25
-// iterations from 400 to 3,200 nodes where A alone needs 30-70.
+// iterations from 400 to 3,200 nodes where A alone needs 30-70. On the scaling
+// benchmark's 217-node fishbone the near field takes GMRES from 61 to 23 iterations
+// per Newton iteration (section 40).
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
@@ -39,9 +46,13 @@ class ApertureOperator final : public fluid::ApertureModel {
   /// `gaps`: per trial fracture end; `loads`: per trial node; `nodes_of_fracture`: the
   /// two nodes of each trial fracture (ends 2k, 2k+1). All must outlive the operator;
   /// the system's factorisation must not change while it is used.
+  /// Hops along the network within which the local part holds S exactly (probed).
+  static constexpr int kNearHops = 4;
+
+  /// `near_hops` 0: the local part is A alone (for comparisons).
   ApertureOperator(const dda::BlockSystem& system, const std::vector<dda::JointEndGap>& gaps,
                    const std::vector<std::vector<NodeLoad>>& loads,
-                   const std::vector<std::array<int, 2>>& nodes_of_fracture);
+                   const std::vector<std::array<int, 2>>& nodes_of_fracture, int near_hops = kNearHops);
 
   int n_ends() const override { return static_cast<int>(gaps_.size()); }
   int n_nodes() const override { return static_cast<int>(loads_.size()); }
@@ -64,6 +75,9 @@ class ApertureOperator final : public fluid::ApertureModel {
 
  private:
   void build_aggregates(const std::vector<std::array<int, 2>>& nodes_of_fracture);
+  /// Colours the nodes so that two of a colour are more than 2 near_hops apart along the
+  /// network, and lists each end's near nodes (within near_hops of the end's node).
+  void build_near_field(const std::vector<std::array<int, 2>>& nodes_of_fracture, int near_hops);
 
   const dda::BlockSystem& system_;
   const std::vector<dda::JointEndGap>& gaps_;
@@ -71,6 +85,10 @@ class ApertureOperator final : public fluid::ApertureModel {
   std::vector<int> aggregate_;          // per node
   std::vector<int> aggregate_size_;     // per aggregate
   Eigen::MatrixXd s_times_p_;           // S P, 2 nf x m [m/Pa]
+  std::vector<int> colour_;             // per node, for probing the near field of S
+  int n_colours_ = 0;
+  /// Per end: its near nodes and the probed entries S(end, node) [m/Pa].
+  std::vector<std::vector<std::pair<int, double>>> near_;
   mutable Eigen::VectorXd rhs_;         // 6 nb work vector
   mutable long products_ = 0;
   long iterations_ = 0;

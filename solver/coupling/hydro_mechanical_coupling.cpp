@@ -96,7 +96,7 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
       const auto& joint = system.mesh().joints[fractures[k]];
       nodes_of_fracture_[k] = {network_.node_index(joint.point_p), network_.node_index(joint.point_q)};
     }
-    operator_ = std::make_unique<ApertureOperator>(system, gaps_, loads_, nodes_of_fracture_);
+    operator_ = std::make_unique<ApertureOperator>(system, gaps_, loads_, nodes_of_fracture_, near_field_hops_);
     sensitivity_.resize(0, 0);
     sensitivity_version_ = -1;
     topology_changed_ = false;

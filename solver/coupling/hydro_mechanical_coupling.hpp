@@ -73,6 +73,9 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
 
   /// Statistics of the last step attempt (committed or not).
   const CouplingStatistics& statistics() const { return stats_; }
+  /// Krylov path: hops of the preconditioner's near field (ApertureOperator::kNearHops;
+  /// 0 leaves it out, for comparisons). Takes effect at the next operator built.
+  void set_near_field_hops(int hops) { near_field_hops_ = hops; }
   const fluid::FlowNetwork& network() const { return network_; }
   /// S as handed to the flow solve by the last prepare() (dense path; empty on the krylov
   /// path): tests compare an updated S with one rebuilt from a new factorisation
@@ -127,6 +130,7 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
 
   fluid::FlowNetwork& network_;
   FlowJacobian jacobian_;
+  int near_field_hops_ = ApertureOperator::kNearHops;
   bool topology_changed_ = true;
   std::vector<dda::JointEndGap> gaps_;           // per trial fracture end
   std::vector<std::vector<NodeLoad>> loads_;     // per trial node
