@@ -17,6 +17,8 @@ namespace {
 constexpr double kLinearTolerance = 1e-10;
 constexpr int kMaxLinearIterations = 400;
 constexpr int kRestart = 80;
+/// Right-hand sides per solve when S P and the near field are formed.
+constexpr int kColumnsPerSolve = 64;
 
 /// The Jacobian and the preconditioner in the forms Eigen's GMRES expects.
 struct JacobianProduct {
@@ -37,24 +39,30 @@ ApertureOperator::ApertureOperator(const dda::BlockSystem& system, const std::ve
     : system_(system), gaps_(gaps), loads_(loads) {
   build_aggregates(nodes_of_fracture);
   if (near_hops > 0) build_near_field(nodes_of_fracture, near_hops);
-  // S P and the probes of the near field: one solve with as many right-hand sides as
-  // aggregates and colours.
-  const int m = n_aggregates(), nb = system_.n_blocks();
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(6 * nb, m + n_colours_);
-  for (int i = 0; i < n_nodes(); ++i)
-    for (const NodeLoad& l : loads_[i]) {
-      rhs.block<6, 1>(6 * l.block, aggregate_[i]) += l.force;
-      if (n_colours_ > 0) rhs.block<6, 1>(6 * l.block, m + colour_[i]) += l.force;
-    }
-  const Eigen::MatrixXd x = system_.solver().solve(rhs);
+  // S P and the probes of the near field: solves with one right-hand side per aggregate
+  // and per colour, kColumnsPerSolve at a time (the block system's unknowns times the
+  // columns is what a solve holds, several times over inside CHOLMOD).
+  const int m = n_aggregates(), nb = system_.n_blocks(), columns = m + n_colours_;
   s_times_p_.resize(n_ends(), m);
-  for (int e = 0; e < n_ends(); ++e) {
-    const auto& g = gaps_[e];
-    const Eigen::RowVectorXd row =
-        g.row_a * x.middleRows<6>(6 * g.block_a) + g.row_b * x.middleRows<6>(6 * g.block_b);
-    s_times_p_.row(e) = row.head(m);
-    if (n_colours_ > 0)
-      for (auto& [node, entry] : near_[e]) entry = row[m + colour_[node]];
+  for (int first = 0; first < columns; first += kColumnsPerSolve) {
+    const int width = std::min(kColumnsPerSolve, columns - first);
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(6 * nb, width);
+    for (int i = 0; i < n_nodes(); ++i)
+      for (const int column : {aggregate_[i], n_colours_ > 0 ? m + colour_[i] : -1})
+        if (column >= first && column < first + width)
+          for (const NodeLoad& l : loads_[i]) rhs.block<6, 1>(6 * l.block, column - first) += l.force;
+    const Eigen::MatrixXd x = system_.solver().solve(rhs);
+    for (int e = 0; e < n_ends(); ++e) {
+      const auto& g = gaps_[e];
+      const Eigen::RowVectorXd row =
+          g.row_a * x.middleRows<6>(6 * g.block_a) + g.row_b * x.middleRows<6>(6 * g.block_b);
+      for (int c = first; c < std::min(first + width, m); ++c) s_times_p_(e, c) = row[c - first];
+      if (n_colours_ > 0)
+        for (auto& [node, entry] : near_[e]) {
+          const int column = m + colour_[node];
+          if (column >= first && column < first + width) entry = row[column - first];
+        }
+    }
   }
   rhs_.setZero(6 * nb);
 }
