@@ -27,6 +27,15 @@ struct JacobianProduct {
   Eigen::Index cols() const { return op->n_nodes(); }
   Eigen::VectorXd operator*(const Eigen::VectorXd& v) const { return op->jacobian_times(v); }
 };
+/// Per node, the nodes one fracture away.
+std::vector<std::vector<int>> network_neighbours(int n_nodes, const std::vector<std::array<int, 2>>& nodes_of_fracture) {
+  std::vector<std::vector<int>> neighbours(n_nodes);
+  for (const auto& [a, b] : nodes_of_fracture) {
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  }
+  return neighbours;
+}
 struct TwoLevel {
   const ApertureOperator* op;
   Eigen::VectorXd solve(const Eigen::VectorXd& v) const { return op->precondition(v); }
@@ -69,11 +78,7 @@ ApertureOperator::ApertureOperator(const dda::BlockSystem& system, const std::ve
 
 void ApertureOperator::build_near_field(const std::vector<std::array<int, 2>>& nodes_of_fracture, int near_hops) {
   const int n = n_nodes();
-  std::vector<std::vector<int>> neighbours(n);
-  for (const auto& [a, b] : nodes_of_fracture) {
-    neighbours[a].push_back(b);
-    neighbours[b].push_back(a);
-  }
+  const std::vector<std::vector<int>> neighbours = network_neighbours(n, nodes_of_fracture);
   // Nodes within `hops` of `start` (breadth-first), into `found`.
   std::vector<int> seen(n, -1);
   int search = 0;  // stamps the nodes each search has found
@@ -116,11 +121,7 @@ void ApertureOperator::build_aggregates(const std::vector<std::array<int, 2>>& n
   // Breadth-first along the network from the lowest unassigned node, closing an
   // aggregate at the target size: connected groups of about sqrt(n) / 2 nodes.
   const int n = n_nodes();
-  std::vector<std::vector<int>> neighbours(n);
-  for (const auto& [a, b] : nodes_of_fracture) {
-    neighbours[a].push_back(b);
-    neighbours[b].push_back(a);
-  }
+  const std::vector<std::vector<int>> neighbours = network_neighbours(n, nodes_of_fracture);
   const int target = std::max(4, static_cast<int>(std::ceil(0.5 * std::sqrt(static_cast<double>(n)))));
   aggregate_.assign(n, -1);
   aggregate_size_.clear();
