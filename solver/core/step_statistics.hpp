@@ -15,6 +15,9 @@ struct StepStatistics {
   int alm_iterations = 0;           ///< linear solves of the contact iterations
   int alm_stalls = 0;               ///< ALM solves ended by the stall test (inconsistent contact loops)
   double max_alm_stall_mismatch = 0.0;  ///< largest gap / contact length accepted at a stall
+  /// Contact solves in which the friction of sliding penalty contacts still followed its
+  /// normal force after kMaxFrictionIterations iterates and was frozen at the last one.
+  int friction_iterations_frozen = 0;
   /// Largest ||D(m+1) - D(m)|| / ||D(m+1)|| over the last ALM iteration of each solve
   /// (reported; the stop test is on the contact forces, see docs/seed_errata.md, erratum 2).
   double max_alm_displacement_change = 0.0;
@@ -66,6 +69,7 @@ struct StepStatistics {
     open_close_iterations += later.open_close_iterations;
     alm_iterations += later.alm_iterations;
     alm_stalls += later.alm_stalls;
+    friction_iterations_frozen += later.friction_iterations_frozen;
     max_alm_stall_mismatch = std::max(max_alm_stall_mismatch, later.max_alm_stall_mismatch);
     max_alm_displacement_change = std::max(max_alm_displacement_change, later.max_alm_displacement_change);
     factorizations += later.factorizations;

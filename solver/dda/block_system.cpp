@@ -39,6 +39,7 @@ void BlockSystem::begin_step(double dt_s) {
   assembled_terms_.clear();
   logged_from_version_ = -1;
   contacts_.begin_step();
+  for (auto& c : contacts_.all()) c.friction_normal_N = -1.0;
   update_block_geometry();
   assemble_block_terms(dt_s);
   linearise_contacts();

@@ -14,7 +14,8 @@
 //   repeat {
 //     assemble_and_factorise()          K for the current states (when they changed)
 //     begin_contact_iterations(); repeat { contact_rhs() -> solver().solve() ->
-//       update_multipliers() }          ALM (Uzawa, eq. 2.19) or one penalty solve
+//       update_multipliers() }          ALM (Uzawa, eq. 2.19) or one penalty solve, repeated
+//                                       while the friction of held springs follows N
 //     trial_contacts(d)                 tractions and open-close rules at the trial D
 //     apply_state_changes(d, changes)   with the bond failures found by fracture/
 //   }
@@ -142,6 +143,9 @@ struct ContactChange {
   bool breaks_bond;
   double friction_sign;  ///< +-1: sense of the friction force from now on; 0: unchanged
   std::optional<VertexEdgeSpring> vertex_vertex;  ///< spring of an activated vertex-vertex contact
+  /// A sliding contact whose slip in this step reversed locks where it was at the step's
+  /// start (its reference and shear multiplier then), not where the trial left it.
+  bool relock_at_step_start = false;
 };
 
 /// The joint contacts at a trial displacement.
@@ -343,6 +347,9 @@ class BlockSystem {
   double spring_gap(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   double spring_shear(const VertexEdgeSpring& s, const Eigen::VectorXd& d) const;
   [[noreturn]] void throw_alm_limit(double error, double scale) const;
+  /// Sets the friction normal force of every sliding contact with held springs to its
+  /// value at `d`; true if one moved by more than the tolerance since the last iterate.
+  bool follow_friction_normal_forces(const Eigen::VectorXd& d);
   /// matrix += stiffness e e^T for the spring term's e (the slot of its block pair).
   static void add_spring_term(BlockSparseMatrix& matrix, int slot, const SpringTerm& t, double stiffness);
   /// The contact's multipliers are iterated (Augmented Lagrangian) rather than held (two-tier penalty).

@@ -18,6 +18,18 @@ namespace {
 /// 1e-6 is well below the elastic strains of rock under stress (1e-4 at 2.5 MPa and 25 GPa).
 constexpr double kAlmStallMismatch = 1.0e-6;
 
+/// The friction of a sliding contact with held springs is iterated with the contact
+/// iterations until its normal force changes by at most this fraction between two
+/// iterates: the friction force is then within 0.1 % of tan(phi) times the normal force
+/// of the solution, well inside the spread of measured friction angles (a degree at
+/// 30 degrees is 4 % of tan phi).
+constexpr double kFrictionNormalTolerance = 1.0e-3;
+/// Iterates after which the friction stops following the normal force within one contact
+/// solve and is frozen at its last value (counted: friction_iterations_frozen). The fixed
+/// point contracts by 0.001-0.6 per iterate where it converges; where a wedge of sliding
+/// contacts amplifies it, it does not, and the open-close iterations must change a state.
+constexpr int kMaxFrictionIterations = 30;
+
 void add_spring_to_rhs(Eigen::VectorXd& f, const VertexEdgeSpring& s, double weight, double force_normal,
                        double force_shear) {
   // Pi = w (lambda g + k/2 g^2) with g = g0 + e.D gives F -= w (lambda + k g0) e^T.
@@ -100,11 +112,14 @@ Eigen::VectorXd BlockSystem::contact_rhs() const {
     const double kn = normal_stiffness(c), ks = shear_stiffness(c);
     const double w = 1.0 / c.n_springs;
     // Sliding: constant friction force opposing slip (Mohr-Coulomb limit) instead of a shear spring.
+    // Iterated contacts take their normal force from the multiplier, which follows the
+    // solution; held ones from their last iterate (follow_friction_normal_forces).
     double friction = 0.0;
     if (c.state == ContactState::sliding) {
       double normal = 0.0;
       for (int k = 0; k < c.n_springs; ++k) normal += w * (c.springs[k].normal_multiplier_N + kn * c.springs[k].gap0);
-      friction = c.friction_sign * (c.cohesion_Pa * c.length_m * c.bonded + std::max(-normal, 0.0) * c.tan_friction);
+      const double compression = c.friction_normal_N >= 0.0 ? c.friction_normal_N : std::max(-normal, 0.0);
+      friction = c.friction_sign * (c.cohesion_Pa * c.length_m * c.bonded + compression * c.tan_friction);
     }
     for (int k = 0; k < c.n_springs; ++k) {
       const auto& s = c.springs[k];
@@ -116,8 +131,42 @@ Eigen::VectorXd BlockSystem::contact_rhs() const {
   return f;
 }
 
+bool BlockSystem::follow_friction_normal_forces(const Eigen::VectorXd& d) {
+  // Eq. 2.16 asks for the friction of the normal force at the step's solution. A held
+  // (penalty) spring's normal force is k g(D): taken at the start of the step, friction
+  // lags the normal force by a step, and under a constant load a wedge of sliding
+  // contacts winds its forces up from step to step (docs/design_notes.md section 41).
+  bool moved = false;
+  const double round_off_force = settings_.normal_stiffness_N_m * gap_round_off_m_;
+  for (auto& c : contacts_.all()) {
+    if (c.state != ContactState::sliding || c.joint < 0 || c.tan_friction == 0.0) continue;
+    if (settings_.augmented_lagrangian && iterated(c)) continue;  // the multiplier follows the solution
+    const double kn = normal_stiffness(c), w = 1.0 / c.n_springs;
+    double normal_now = 0.0, normal_start = 0.0;
+    for (int k = 0; k < c.n_springs; ++k) {
+      const auto& s = c.springs[k];
+      normal_now += w * (s.normal_multiplier_N + kn * spring_gap(s, d));
+      normal_start += w * (s.normal_multiplier_N + kn * s.gap0);
+    }
+    const double used = c.friction_normal_N >= 0.0 ? c.friction_normal_N : std::max(-normal_start, 0.0);
+    const double now = std::max(-normal_now, 0.0);
+    if (std::abs(now - used) > kFrictionNormalTolerance * std::max(now, used) + round_off_force) moved = true;
+    c.friction_normal_N = now;
+  }
+  return moved;
+}
+
 ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int iteration, StepStatistics& stats) {
-  if (!settings_.augmented_lagrangian) return ContactIteration::converged;  // penalty: one solve
+  bool friction_moved = false;
+  if (iteration < kMaxFrictionIterations) {
+    friction_moved = follow_friction_normal_forces(d);
+    if (friction_moved && iteration + 1 == kMaxFrictionIterations) {
+      ++stats.friction_iterations_frozen;
+      friction_moved = false;
+    }
+  }
+  if (!settings_.augmented_lagrangian)  // penalty: one solve, repeated while the friction moves
+    return friction_moved ? ContactIteration::again : ContactIteration::converged;
   double largest_stiffness = std::max(settings_.normal_stiffness_N_m, settings_.shear_stiffness_N_m);
   // Uzawa update of the multipliers (eq. 2.19); stop when the corrections are
   // negligible against the contact forces themselves. A contact is one normal and
@@ -159,7 +208,8 @@ ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int i
   }
   // Gaps cannot be resolved below the round-off of the coordinates they come from.
   const double round_off_force = largest_stiffness * gap_round_off_m_;
-  if (error <= settings_.alm_force_tolerance * scale + round_off_force) return ContactIteration::converged;
+  if (!friction_moved && error <= settings_.alm_force_tolerance * scale + round_off_force)
+    return ContactIteration::converged;
   // Stalled: the corrections no longer change, so the multiplier updates no longer
   // move the blocks. Around a point where every joint is closed, the contacts form a
   // loop of constraints; once some of them slipped and re-locked, the rotations of
@@ -167,7 +217,7 @@ ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int i
   // displacement closes every gap. The remaining gaps are that geometric mismatch:
   // accept them if they are small against the contacts' lengths (kAlmStallMismatch),
   // and count the stall and its mismatch.
-  if (iteration > 0 && change <= settings_.alm_force_tolerance * scale + round_off_force &&
+  if (!friction_moved && iteration > 0 && change <= settings_.alm_force_tolerance * scale + round_off_force &&
       mismatch <= kAlmStallMismatch) {
     ++stats.alm_stalls;
     stats.max_alm_stall_mismatch = std::max(stats.max_alm_stall_mismatch, mismatch);

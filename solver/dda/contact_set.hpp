@@ -71,6 +71,8 @@ class ContactSet {
   void save_state(BinaryWriter& out) const;
   void restore_state(BinaryReader& in);
 
+  /// Joint contact `ci` as it was at the start of the step.
+  const Contact& joint_at_step_start(int ci) const { return joints_at_start_[ci]; }
   /// Back to the contacts at the start of the step (K's pattern is kept).
   void roll_back();
 

@@ -56,6 +56,11 @@ struct Contact {
   bool bonded = true;      ///< bond intact: T0 and C0 act (its strength: fracture/)
   double cohesion_Pa = 0.0, tan_friction = 0.0;  ///< of the sliding law (C0 while bonded)
   double friction_sign = 1.0;  ///< sense of the sliding friction force
+  /// Compressive normal force [N per m thickness] that the friction of a sliding contact
+  /// with held springs (penalty, or two-tier's unbonded contacts) acts with: the normal
+  /// force at the last contact iterate (eq. 2.16 at the step's solution). Negative until
+  /// the first iterate in this state: the normal force at the step's start.
+  double friction_normal_N = -1.0;
 
   // Vertex-vertex candidates only: the two blocks and their corners at `point`.
   bool vertex_vertex_active = false;

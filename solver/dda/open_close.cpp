@@ -80,13 +80,24 @@ std::optional<ContactChange> BlockSystem::open_close_change(int ci, const Contac
         return ContactChange{ci, ContactState::sliding, false, t.shear_N >= 0.0 ? 1.0 : -1.0};
       break;
     case ContactState::sliding: {
-      // Slip since locking (or since the bond broke), in the sense of the friction force; a
-      // reversal re-locks.
-      double slip = 0.0;
-      for (int k = 0; k < c.n_springs; ++k) slip += 1.0 / c.n_springs * spring_shear(c.springs[k], d);
       if (t.normal_N > 0.0) return ContactChange{ci, ContactState::open};
       const bool may_relock = settings_.relock_in_failure_step || !contacts_.bond_failed_in_step(ci);
-      if (c.joint >= 0 && may_relock && slip * c.friction_sign < 0.0) return ContactChange{ci, ContactState::locked};
+      if (c.joint < 0 || !may_relock) break;
+      // A reversal of the slip against the friction force re-locks (Shi 1988). For a
+      // contact closed at the step's start the slip is that of this step (the spring's
+      // shear without its value at the start): friction that outlasts the driving shear
+      // then stops the block where the step began, instead of pulling it back along the
+      // whole slip since it last locked (docs/design_notes.md section 41). For one that
+      // closed in this step, the slip since it closed.
+      const bool closed_at_start = contacts_.joint_at_step_start(ci).state != ContactState::open;
+      double slip = 0.0;
+      for (int k = 0; k < c.n_springs; ++k)
+        slip += 1.0 / c.n_springs * (spring_shear(c.springs[k], d) - (closed_at_start ? c.springs[k].shear0 : 0.0));
+      if (slip * c.friction_sign < 0.0) {
+        ContactChange relock{ci, ContactState::locked};
+        relock.relock_at_step_start = closed_at_start;
+        return relock;
+      }
       break;
     }
   }
@@ -165,10 +176,22 @@ void BlockSystem::apply_change(const ContactChange& ch, const Eigen::VectorXd& d
   }
   if (c.joint < 0 && ch.to == ContactState::open) c.vertex_vertex_active = false;
   c.state = ch.to;
+  c.friction_normal_N = -1.0;  // a new state starts from the step's normal force
   for (int k = 0; k < c.n_springs; ++k) {
     auto& s = c.springs[k];
     if (ch.to == ContactState::open) {
       s.normal_multiplier_N = s.shear_multiplier_N = 0.0;
+    } else if (ch.relock_at_step_start) {
+      // Locked where it was when the step began: as it was then if it was locked (and its
+      // bond has not broken since), else at the point its corner faced at the start.
+      const Contact& start = contacts_.joint_at_step_start(ch.contact);
+      if (start.state == ContactState::locked && start.bonded == c.bonded) {
+        s.reference_ratio = start.springs[k].reference_ratio;
+        s.shear_multiplier_N = start.springs[k].shear_multiplier_N;
+      } else {
+        reset_shear_reference(s, Eigen::VectorXd::Zero(d.size()));
+      }
+      linearise_spring(s);
     } else {
       reset_shear_reference(s, d);  // slip and shear are measured from the closing point
       linearise_spring(s);

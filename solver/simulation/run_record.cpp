@@ -298,6 +298,8 @@ const std::vector<SummaryField>& summary_solver_fields() {
        true},
       {"alm_stalls", "ALM solves ended by the stall test", [](const StepStatistics& t) { return double(t.alm_stalls); },
        true},
+      {"friction_iterations_frozen", "contact solves whose sliding friction was frozen before its normal force settled",
+       [](const StepStatistics& t) { return double(t.friction_iterations_frozen); }, true},
       {"max_alm_stall_mismatch", "largest mismatch accepted at a stall",
        [](const StepStatistics& t) { return t.max_alm_stall_mismatch; }},
       {"steps_with_cycles", "(sub-)steps that ended with a contact held on an open-close cycle",

@@ -235,12 +235,11 @@ INSTANTIATE_TEST_SUITE_P(Slope30Deg, SlidingBlock,
 // moves the block a(tilt) dt^2 / 2 from rest. With the friction of the step's start the
 // first step at 25 degrees runs with the old N: g tan(phi) (cos 25 - cos 30) = 0.144 m/s^2
 // more acceleration, 7.2e-6 m more slip, against a tolerance of 1.0e-6 m. Penalty springs
-// carry the normal force in their gap alone; the Augmented Lagrangian in its multiplier.
-// Disabled: a known failure of today's contact law for penalty contacts, whose friction
-// is taken at the normal force of the step's start, kept to reproduce it. Iterating the
-// friction on the contact iterates passes it, but made a network realisation of the
-// unit tier stop on the flow Newton (docs/design_notes.md section 10).
-TEST(SlidingBlock, DISABLED_FrictionActsWithTheNormalForceOfItsStep) {
+// carry the normal force in their gap alone, so their friction is iterated with the
+// contact iterations (BlockSystem::follow_friction_normal_forces); the Augmented
+// Lagrangian carries it in its multiplier. Fails with the friction of penalty contacts
+// taken at the step's start (2.4e-5 m off from the first step).
+TEST(SlidingBlock, FrictionActsWithTheNormalForceOfItsStep) {
   constexpr double phi = 20.0;
   constexpr int n1 = 5, n2 = 5;
   const double a1 = analytical_acceleration(30.0, phi), a2 = analytical_acceleration(25.0, phi);
@@ -258,15 +257,12 @@ TEST(SlidingBlock, DISABLED_FrictionActsWithTheNormalForceOfItsStep) {
   }
 }
 
-// Disabled: a known failure of the contact law, kept to reproduce it
-// (docs/design_notes.md section 11). A sliding contact re-locks only once its slip since
-// it locked is undone, so a block whose driving shear falls below the friction limit is
-// pulled back up the slope by its own friction (measured: 4.6 mm dynamic, 0.96 mm static,
-// against a block that should stop and stay). Re-locking when the slip of the step
-// reverses fixes this test, but with the reference at the start of the step it stopped
-// four Mode II and one mixed-mode verification runs, and with the reference at the trial
-// it leaves a one-step error; see the design notes.
-TEST(SlidingBlockStops, DISABLED_WhenTheDrivingShearFallsBelowTheFrictionLimit) {
+// A sliding contact re-locks when its slip in the step reverses against the friction
+// force, at the point it held when the step began (docs/design_notes.md section 41). With
+// the older rule, re-locking only once the whole slip since the contact last locked was
+// undone, the block was pulled back up the slope by its own friction (4.6 mm dynamic,
+// 0.96 mm static, where it should stop and stay); the test fails with that rule.
+TEST(SlidingBlockStops, WhenTheDrivingShearFallsBelowTheFrictionLimit) {
   // Phi = 20 deg; gravity at 30 deg to the joint's normal for 0.1 s (the block slides),
   // then at 15 deg (tan 15 < tan 20). Dynamic: the block decelerates at
   // a2 = g (sin 15 - cos 15 tan 20) and stops after v1 / |a2| = 0.199 s, mid-step, at
