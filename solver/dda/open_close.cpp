@@ -84,12 +84,15 @@ std::optional<ContactChange> BlockSystem::open_close_change(int ci, const Contac
       const bool may_relock = settings_.relock_in_failure_step || !contacts_.bond_failed_in_step(ci);
       if (c.joint < 0 || !may_relock) break;
       // A reversal of the slip against the friction force re-locks (Shi 1988). For a
-      // contact closed at the step's start the slip is that of this step (the spring's
-      // shear without its value at the start): friction that outlasts the driving shear
-      // then stops the block where the step began, instead of pulling it back along the
-      // whole slip since it last locked (docs/design_notes.md section 41). For one that
-      // closed in this step, the slip since it closed.
-      const bool closed_at_start = contacts_.joint_at_step_start(ci).state != ContactState::open;
+      // held (penalty) contact closed at the step's start the slip is that of this step
+      // (the spring's shear without its value at the start): friction that outlasts the
+      // driving shear then stops the block where the step began, instead of pulling it
+      // back along the whole slip since it last locked (docs/design_notes.md section 41).
+      // For one that closed in this step, and for iterated contacts, the slip since it
+      // closed or last locked: an Augmented Lagrangian contact locked back at the start
+      // stopped Mode II and mixed-mode runs on its multipliers (section 41).
+      const bool held = !(settings_.augmented_lagrangian && iterated(c));
+      const bool closed_at_start = held && contacts_.joint_at_step_start(ci).state != ContactState::open;
       double slip = 0.0;
       for (int k = 0; k < c.n_springs; ++k)
         slip += 1.0 / c.n_springs * (spring_shear(c.springs[k], d) - (closed_at_start ? c.springs[k].shear0 : 0.0));

@@ -257,12 +257,15 @@ TEST(SlidingBlock, FrictionActsWithTheNormalForceOfItsStep) {
   }
 }
 
-// A sliding contact re-locks when its slip in the step reverses against the friction
-// force, at the point it held when the step began (docs/design_notes.md section 41). With
-// the older rule, re-locking only once the whole slip since the contact last locked was
-// undone, the block was pulled back up the slope by its own friction (4.6 mm dynamic,
-// 0.96 mm static, where it should stop and stay); the test fails with that rule.
-TEST(SlidingBlockStops, WhenTheDrivingShearFallsBelowTheFrictionLimit) {
+// A held (penalty) contact re-locks when its slip in the step reverses against the
+// friction force, at the point it held when the step began (docs/design_notes.md section
+// 41). With the older rule, re-locking only once the whole slip since the contact last
+// locked was undone, the block was pulled back up the slope by its own friction (4.6 mm
+// dynamic, 0.96 mm static, where it should stop and stay); the penalty test fails with
+// that rule. Augmented Lagrangian contacts keep the older rule (locked back at the start,
+// they stopped Mode II and mixed-mode verification runs on their multipliers), so their
+// test stays disabled, a known failure kept to reproduce it.
+void expect_block_stops(bool penalty) {
   // Phi = 20 deg; gravity at 30 deg to the joint's normal for 0.1 s (the block slides),
   // then at 15 deg (tan 15 < tan 20). Dynamic: the block decelerates at
   // a2 = g (sin 15 - cos 15 tan 20) and stops after v1 / |a2| = 0.199 s, mid-step, at
@@ -279,21 +282,25 @@ TEST(SlidingBlockStops, WhenTheDrivingShearFallsBelowTheFrictionLimit) {
   const double t1 = n1 * kDt_s, v1 = a1 * t1;
   ASSERT_GT(n2 * kDt_s, v1 / -a2 + 2 * kDt_s);  // stops well before the end
   for (bool dynamic : {true, false}) {
-    const SlideRun run = slide(phi, dynamic, {{n1, 30.0}, {n2, 15.0}});
+    const SlideRun run = slide(phi, dynamic, {{n1, 30.0}, {n2, 15.0}}, penalty);
     const double s1 = dynamic ? 0.5 * a1 * t1 * t1 : n1 * 0.5 * a1 * kDt_s * kDt_s;
     const double rest = dynamic ? s1 + v1 * v1 / (-2.0 * a2) : s1;
     const double tolerance = slip_tolerance(n1 + n2, dynamic) + (dynamic ? -a2 * kDt_s * kDt_s : 0.0);
+    const std::string label = std::string(dynamic ? "dynamic" : "static") + (penalty ? ", penalty" : ", ALM");
     std::printf("STOP %s: s after phase 1 %.6e m (analytical %.6e), at rest %.6e m (analytical %.6e, "
                 "error %.2e m, tolerance %.1e m); %d sliding ends\n",
-                dynamic ? "dynamic" : "static", run.slip_m[n1 - 1], s1, run.slip_m.back(), rest,
-                run.slip_m.back() - rest, tolerance, run.sliding_ends);
-    EXPECT_NEAR(run.slip_m[n1 - 1], s1, slip_tolerance(n1, dynamic)) << (dynamic ? "dynamic" : "static");
-    EXPECT_NEAR(run.slip_m.back(), rest, tolerance) << (dynamic ? "dynamic" : "static");
+                label.c_str(), run.slip_m[n1 - 1], s1, run.slip_m.back(), rest, run.slip_m.back() - rest, tolerance,
+                run.sliding_ends);
+    EXPECT_NEAR(run.slip_m[n1 - 1], s1, slip_tolerance(n1, dynamic)) << label;
+    EXPECT_NEAR(run.slip_m.back(), rest, tolerance) << label;
     // At rest for the last 5 steps.
-    EXPECT_LT(std::abs(run.slip_m.back() - run.slip_m[n1 + n2 - 6]), 4.0 * kSettling_m)
-        << (dynamic ? "dynamic" : "static");
+    EXPECT_LT(std::abs(run.slip_m.back() - run.slip_m[n1 + n2 - 6]), 4.0 * kSettling_m) << label;
   }
 }
+
+TEST(SlidingBlockStops, WhenTheDrivingShearFallsBelowTheFrictionLimit) { expect_block_stops(true); }
+
+TEST(SlidingBlockStops, DISABLED_WithAugmentedLagrangianContacts) { expect_block_stops(false); }
 
 }  // namespace
 }  // namespace hfdda::dda
