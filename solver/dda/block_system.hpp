@@ -81,6 +81,13 @@ struct MechanicsSettings {
   /// redistribution, and the re-locked contact holds a shear force outside friction that
   /// may break the next bond (docs/design_notes.md section 29).
   bool relock_in_failure_step = true;
+  /// Sliding contacts whose springs are held through the step (penalty contacts, two-tier
+  /// contacts' unbonded ones): true, friction acts with the normal force of the contact
+  /// iterate (iterated to 0.1 %) and a contact closed at the step's start re-locks when its
+  /// slip in the step reverses, where it was at the start; false, the normal force at the
+  /// step's start and re-locking once the slip since the last lock reverses (the default:
+  /// true changes the network cases' findings, docs/design_notes.md section 41).
+  bool friction_at_solution = false;
   /// A step whose contact iterations end with two faces of a joint overlapping by more
   /// than this fraction of the joint's length is not accepted (it is cut): no rock mass
   /// deforms that much, so the contact state it ended on, e.g. a cycle held open while

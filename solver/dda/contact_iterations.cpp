@@ -158,7 +158,7 @@ bool BlockSystem::follow_friction_normal_forces(const Eigen::VectorXd& d) {
 
 ContactIteration BlockSystem::update_multipliers(const Eigen::VectorXd& d, int iteration, StepStatistics& stats) {
   bool friction_moved = false;
-  if (iteration < kMaxFrictionIterations) {
+  if (settings_.friction_at_solution && iteration < kMaxFrictionIterations) {
     friction_moved = follow_friction_normal_forces(d);
     if (friction_moved && iteration + 1 == kMaxFrictionIterations) {
       ++stats.friction_iterations_frozen;

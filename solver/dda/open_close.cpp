@@ -91,7 +91,7 @@ std::optional<ContactChange> BlockSystem::open_close_change(int ci, const Contac
       // For one that closed in this step, and for iterated contacts, the slip since it
       // closed or last locked: an Augmented Lagrangian contact locked back at the start
       // stopped Mode II and mixed-mode runs on its multipliers (section 41).
-      const bool held = !(settings_.augmented_lagrangian && iterated(c));
+      const bool held = settings_.friction_at_solution && !(settings_.augmented_lagrangian && iterated(c));
       const bool closed_at_start = held && contacts_.joint_at_step_start(ci).state != ContactState::open;
       double slip = 0.0;
       for (int k = 0; k < c.n_springs; ++k)

@@ -308,6 +308,9 @@ struct NumericsConfig {
   /// A contact whose bond broke in this step may be re-locked by a slip reversal within
   /// the step (dda::MechanicsSettings::relock_in_failure_step).
   bool relock_in_failure_step = true;
+  /// Friction of held (penalty, two-tier unbonded) contacts at the normal force of the
+  /// solution, and their re-locking on the step's slip (dda::MechanicsSettings::friction_at_solution).
+  bool friction_at_solution = false;
   /// Bonds fail only in a round in which no contact changes state
   /// (fracture::FractureRules::failures_on_settled_contacts).
   bool failures_on_settled_contacts = false;

@@ -107,6 +107,15 @@ const Table<NumericsConfig>& numerics_table() {
                 "measured from the failure, and a contact re-locked there holds a shear force outside "
                 "friction (docs/design_notes.md section 29)"},
                &NumericsConfig::relock_in_failure_step),
+       boolean({"friction_at_solution", "", "§2.3, eq. 2.16: false (the normal force at the step's start)",
+                "sliding contacts whose springs are held through the step (penalty contacts, two-tier "
+                "contacts' unbonded ones): true, friction acts with the normal force of the contact iterate, "
+                "iterated to 0.1 % (at most 30 iterates), and a contact re-locks when its slip in the step "
+                "reverses, where it was at the step's start; false, friction acts with the normal force at the "
+                "step's start and a contact re-locks once its slip since it last locked reverses. True removes "
+                "the windup of sliding wedges under a constant load but changes the network cases' findings "
+                "(docs/design_notes.md section 41)"},
+               &NumericsConfig::friction_at_solution),
        boolean({"failures_on_settled_contacts", "", "none (HFDDA): the seed checks contact states and bond failures in the same round (2.3)",
                 "true: a bond may fail only in an open-close round in which no contact changes state, so "
                 "that every failure is judged on a state whose contacts are settled (docs/design_notes.md "

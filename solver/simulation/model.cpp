@@ -511,6 +511,7 @@ dda::MechanicsSettings mechanics_settings(const io::CaseConfig& c) {
   s.max_state_flips = c.numerics.max_state_flips;
   s.close_penetrating_cycles = c.numerics.cycle_resolution == io::CycleResolution::close_penetrating;
   s.relock_in_failure_step = c.numerics.relock_in_failure_step;
+  s.friction_at_solution = c.numerics.friction_at_solution;
   s.dynamic = c.numerics.analysis == io::AnalysisKind::dynamic_analysis;
   s.mechanism_inertia_time_s = c.numerics.mechanism_inertia_time_s;
   s.low_rank_updates = c.numerics.low_rank_updates;

@@ -100,7 +100,8 @@ struct SlideRun {
 
 /// Base block fixed at its two lower corners, slider resting on it along a joint
 /// inclined at kSlopeDeg (unbonded: initially open, T0 = C0 = 0, friction angle phi).
-SlideRun slide(double phi_deg, bool dynamic, const std::vector<Phase>& phases, bool penalty = false) {
+SlideRun slide(double phi_deg, bool dynamic, const std::vector<Phase>& phases, bool penalty = false,
+               bool friction_at_solution = false) {
   const double theta = radians(kSlopeDeg);
   const Vec2 down(std::cos(theta), -std::sin(theta)), up_normal(std::sin(theta), std::cos(theta));
   auto at = [&](double along, double across) -> Vec2 { return along * down + across * up_normal; };
@@ -121,6 +122,7 @@ SlideRun slide(double phi_deg, bool dynamic, const std::vector<Phase>& phases, b
   settings.max_alm_iterations = 500;
   settings.dynamic = dynamic;
   settings.augmented_lagrangian = !penalty;
+  settings.friction_at_solution = friction_at_solution;
   BlockSystem system(m, {Material{kYoungsModulus_Pa, 0.25, kDensity_kg_m3}}, settings);
   system.add_fixed_point(m.points[0]);
   system.add_fixed_point(m.points[1]);
@@ -238,14 +240,15 @@ INSTANTIATE_TEST_SUITE_P(Slope30Deg, SlidingBlock,
 // carry the normal force in their gap alone, so their friction is iterated with the
 // contact iterations (BlockSystem::follow_friction_normal_forces); the Augmented
 // Lagrangian carries it in its multiplier. Fails with the friction of penalty contacts
-// taken at the step's start (2.4e-5 m off from the first step).
-TEST(SlidingBlock, FrictionActsWithTheNormalForceOfItsStep) {
+// taken at the step's start (2.4e-5 m off from the first step), which is the default
+// (numerics.friction_at_solution: false, docs/design_notes.md section 41).
+void expect_friction_of_the_step(bool friction_at_solution) {
   constexpr double phi = 20.0;
   constexpr int n1 = 5, n2 = 5;
   const double a1 = analytical_acceleration(30.0, phi), a2 = analytical_acceleration(25.0, phi);
   ASSERT_GT(a2, 0.0);
   for (bool penalty : {true, false}) {
-    const SlideRun run = slide(phi, false, {{n1, 30.0}, {n2, 25.0}}, penalty);
+    const SlideRun run = slide(phi, false, {{n1, 30.0}, {n2, 25.0}}, penalty, friction_at_solution);
     for (int k = 1; k <= n1 + n2; ++k) {
       const double expected = 0.5 * kDt_s * kDt_s * (std::min(k, n1) * a1 + std::max(0, k - n1) * a2);
       EXPECT_NEAR(run.slip_m[k - 1], expected, slip_tolerance(k, false))
@@ -257,15 +260,21 @@ TEST(SlidingBlock, FrictionActsWithTheNormalForceOfItsStep) {
   }
 }
 
-// A held (penalty) contact re-locks when its slip in the step reverses against the
-// friction force, at the point it held when the step began (docs/design_notes.md section
-// 41). With the older rule, re-locking only once the whole slip since the contact last
+TEST(SlidingBlock, FrictionActsWithTheNormalForceOfItsStep) { expect_friction_of_the_step(true); }
+
+// The default law (numerics.friction_at_solution: false) fails this for penalty contacts,
+// from the first step: a known error kept to reproduce it.
+TEST(SlidingBlock, DISABLED_FrictionOfTheStepStartLagsTheNormalForce) { expect_friction_of_the_step(false); }
+
+// With numerics.friction_at_solution, a held (penalty) contact re-locks when its slip in
+// the step reverses against the friction force, at the point it held when the step began
+// (docs/design_notes.md section 41). With the older rule, re-locking only once the whole slip since the contact last
 // locked was undone, the block was pulled back up the slope by its own friction (4.6 mm
 // dynamic, 0.96 mm static, where it should stop and stay); the penalty test fails with
 // that rule. Augmented Lagrangian contacts keep the older rule (locked back at the start,
 // they stopped Mode II and mixed-mode verification runs on their multipliers), so their
 // test stays disabled, a known failure kept to reproduce it.
-void expect_block_stops(bool penalty) {
+void expect_block_stops(bool penalty, bool friction_at_solution) {
   // Phi = 20 deg; gravity at 30 deg to the joint's normal for 0.1 s (the block slides),
   // then at 15 deg (tan 15 < tan 20). Dynamic: the block decelerates at
   // a2 = g (sin 15 - cos 15 tan 20) and stops after v1 / |a2| = 0.199 s, mid-step, at
@@ -282,7 +291,7 @@ void expect_block_stops(bool penalty) {
   const double t1 = n1 * kDt_s, v1 = a1 * t1;
   ASSERT_GT(n2 * kDt_s, v1 / -a2 + 2 * kDt_s);  // stops well before the end
   for (bool dynamic : {true, false}) {
-    const SlideRun run = slide(phi, dynamic, {{n1, 30.0}, {n2, 15.0}}, penalty);
+    const SlideRun run = slide(phi, dynamic, {{n1, 30.0}, {n2, 15.0}}, penalty, friction_at_solution);
     const double s1 = dynamic ? 0.5 * a1 * t1 * t1 : n1 * 0.5 * a1 * kDt_s * kDt_s;
     const double rest = dynamic ? s1 + v1 * v1 / (-2.0 * a2) : s1;
     const double tolerance = slip_tolerance(n1 + n2, dynamic) + (dynamic ? -a2 * kDt_s * kDt_s : 0.0);
@@ -298,9 +307,13 @@ void expect_block_stops(bool penalty) {
   }
 }
 
-TEST(SlidingBlockStops, WhenTheDrivingShearFallsBelowTheFrictionLimit) { expect_block_stops(true); }
+TEST(SlidingBlockStops, WhenTheDrivingShearFallsBelowTheFrictionLimit) { expect_block_stops(true, true); }
 
-TEST(SlidingBlockStops, DISABLED_WithAugmentedLagrangianContacts) { expect_block_stops(false); }
+TEST(SlidingBlockStops, DISABLED_WithAugmentedLagrangianContacts) { expect_block_stops(false, true); }
+
+// The default law (numerics.friction_at_solution: false) pulls the block back (1.4 mm
+// static): a known error kept to reproduce it.
+TEST(SlidingBlockStops, DISABLED_WithTheDefaultLaw) { expect_block_stops(true, false); }
 
 }  // namespace
 }  // namespace hfdda::dda
