@@ -113,7 +113,8 @@ Eigen::VectorXd BlockSystem::contact_rhs() const {
     const double w = 1.0 / c.n_springs;
     // Sliding: constant friction force opposing slip (Mohr-Coulomb limit) instead of a shear spring.
     // Iterated contacts take their normal force from the multiplier, which follows the
-    // solution; held ones from their last iterate (follow_friction_normal_forces).
+    // solution; held ones from the step's start, or with friction_at_solution from their
+    // last iterate (follow_friction_normal_forces).
     double friction = 0.0;
     if (c.state == ContactState::sliding) {
       double normal = 0.0;
@@ -142,13 +143,16 @@ bool BlockSystem::follow_friction_normal_forces(const Eigen::VectorXd& d) {
     if (c.state != ContactState::sliding || c.joint < 0 || c.tan_friction == 0.0) continue;
     if (settings_.augmented_lagrangian && iterated(c)) continue;  // the multiplier follows the solution
     const double kn = normal_stiffness(c), w = 1.0 / c.n_springs;
-    double normal_now = 0.0, normal_start = 0.0;
+    // The force the last solve used: the last iterate's, or the step's start (gap0) on the
+    // first iterate in this state, as contact_rhs takes it.
+    const bool first_iterate = c.friction_normal_N < 0.0;
+    double normal_now = 0.0, normal_used = 0.0;
     for (int k = 0; k < c.n_springs; ++k) {
       const auto& s = c.springs[k];
       normal_now += w * (s.normal_multiplier_N + kn * spring_gap(s, d));
-      normal_start += w * (s.normal_multiplier_N + kn * s.gap0);
+      if (first_iterate) normal_used += w * (s.normal_multiplier_N + kn * s.gap0);
     }
-    const double used = c.friction_normal_N >= 0.0 ? c.friction_normal_N : std::max(-normal_start, 0.0);
+    const double used = first_iterate ? std::max(-normal_used, 0.0) : c.friction_normal_N;
     const double now = std::max(-normal_now, 0.0);
     if (std::abs(now - used) > kFrictionNormalTolerance * std::max(now, used) + round_off_force) moved = true;
     c.friction_normal_N = now;
