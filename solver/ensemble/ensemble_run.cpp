@@ -140,6 +140,12 @@ json record_json(const RealisationRecord& r) {
          {"peak_memory_mb", r.peak_memory_mb},
          {"schedule", {{"process", r.process}, {"started_unix_s", r.started_unix_s}, {"waited_s", r.waited_s}}},
          {"mesh", {{"joints", r.mesh.joints}, {"hash", r.mesh.hash}}}};
+  if (r.quality.known)
+    j["quality"] = {{"max_block_strain", r.quality.max_block_strain},
+                    {"max_aperture_m", r.quality.max_aperture_m},
+                    {"max_overlap_m", r.quality.max_overlap_m},
+                    {"max_cycle_holds", r.quality.max_cycle_holds},
+                    {"final_injection_pressure_Pa", r.quality.final_injection_pressure_Pa}};
   json& seeds = j["seeds"];
   for (const auto& [group, seed] : r.seeds.of_group) seeds[group] = seed;
   json& drawn = j["sampled_parameters"];
@@ -170,6 +176,15 @@ RealisationRecord record_from(const json& j) {
   r.open_length_m = j.at("open_length_m");
   r.wet_length_m = j.at("wet_length_m");
   r.peak_memory_mb = j.value("peak_memory_mb", 0.0);
+  if (j.contains("quality")) {  // records written before it was kept have none
+    const json& q = j.at("quality");
+    r.quality.known = true;
+    r.quality.max_block_strain = q.at("max_block_strain");
+    r.quality.max_aperture_m = q.at("max_aperture_m");
+    r.quality.max_overlap_m = q.at("max_overlap_m");
+    r.quality.max_cycle_holds = q.at("max_cycle_holds");
+    r.quality.final_injection_pressure_Pa = q.at("final_injection_pressure_Pa");
+  }
   if (j.contains("schedule")) {  // records written before it was kept have none
     const json& at = j.at("schedule");
     r.process = at.at("process");
@@ -405,6 +420,8 @@ EnsembleSummary write_ensemble_maps(const std::string& out_dir, const std::vecto
   EnsembleSummary summary;
   summary.requested = first.realisations;
   json failures = json::array();
+  json strained = json::array();
+  int quality_unknown = 0;
   double wall = 0.0, peak_memory_mb = 0.0;
   for (const auto& [index, r] : by_index) {
     peak_memory_mb = std::max(peak_memory_mb, r.peak_memory_mb);
@@ -414,6 +431,14 @@ EnsembleSummary write_ensemble_maps(const std::string& out_dir, const std::vecto
     wall += r.wall_s;
     if (r.status == "completed") {
       ++summary.completed;
+      if (!r.quality.known) ++quality_unknown;
+      if (completed_with_strained_blocks(r)) {
+        ++summary.completed_with_strained_blocks;
+        strained.push_back({{"index", index},
+                            {"max_block_strain", r.quality.max_block_strain},
+                            {"max_aperture_m", r.quality.max_aperture_m},
+                            {"final_injection_pressure_Pa", r.quality.final_injection_pressure_Pa}});
+      }
     } else {
       ++summary.failed;
       failures.push_back({{"index", index}, {"time_s", r.time_s}, {"message", r.message}});
@@ -439,6 +464,11 @@ EnsembleSummary write_ensemble_maps(const std::string& out_dir, const std::vecto
          {"failed", summary.failed},
          {"missing", summary.missing.size()},
          {"failures", failures},
+         {"plausibility",
+          {{"step_strain_limit", kImplausibleStepStrain},
+           {"completed_with_strained_blocks", summary.completed_with_strained_blocks},
+           {"completed_quality_unknown", quality_unknown},
+           {"strained", strained}}},
          {"wall_s_total", wall},
          {"wall_s_per_realisation", summary.found ? wall / summary.found : 0.0},
          {"peak_memory_mb_per_process", peak_memory_mb},

@@ -114,6 +114,9 @@ struct EnsembleSummary {
   int found = 0;           ///< records read
   int completed = 0;
   int failed = 0;
+  /// Completed, but some step strained a block beyond kImplausibleStepStrain (they stay
+  /// in the maps; ensemble_summary.json lists them).
+  int completed_with_strained_blocks = 0;
   std::vector<long> missing;  ///< indices without a record (shards not merged, or not yet run)
 };
 

@@ -104,6 +104,28 @@ EnsembleGeometry ensemble_geometry(const io::CaseConfig& config) {
   return g;
 }
 
+namespace {
+
+/// The largest of each quality column over the run's committed steps.
+RealisationQuality realisation_quality(const simulation::RunRecord& history) {
+  RealisationQuality q;
+  q.known = true;
+  if (history.empty()) return q;
+  const auto largest = [&](const char* column) {
+    const std::vector<double> values = history.series(column);
+    return *std::max_element(values.begin(), values.end());
+  };
+  q.max_block_strain = largest("max_block_strain");
+  q.max_aperture_m = largest("max_aperture_m");
+  q.max_overlap_m = largest("max_overlap_m");
+  q.max_cycle_holds = static_cast<int>(largest("cycle_holds"));
+  if (history.has("injection_pressure_Pa"))
+    q.final_injection_pressure_Pa = history.value(history.rows() - 1, "injection_pressure_Pa");
+  return q;
+}
+
+}  // namespace
+
 simulation::Model build_realisation_model(const io::CaseConfig& config, long index) {
   if (!config.ensemble) throw std::invalid_argument("build_realisation_model: the case has no ensemble section");
   const RealisationSeeds seeds = realisation_seeds(*config.ensemble, index);
@@ -152,7 +174,12 @@ std::optional<RealisationRecord> run_realisation(const io::CaseConfig& config, c
   const MapSnapshot last = snapshot(model, geometry);
   for (int j : last.open_joints) record.open_length_m += (geometry.joints[j].b - geometry.joints[j].a).norm();
   for (int j : last.wet_joints) record.wet_length_m += (geometry.joints[j].b - geometry.joints[j].a).norm();
+  record.quality = realisation_quality(result.record);
   return record;
+}
+
+bool completed_with_strained_blocks(const RealisationRecord& r) {
+  return r.status == "completed" && r.quality.known && r.quality.max_block_strain > kImplausibleStepStrain;
 }
 
 }  // namespace hfdda::ensemble

@@ -49,6 +49,27 @@ struct MeshSignature {
 };
 
 /// What is kept of one realisation (written as realisations/r<index>.json).
+/// How far a realisation's committed steps are from what elastic rock under its loads
+/// can do, the largest over its steps (history.csv's columns of the same names). A run
+/// completes when every step passes the solver's guards (faces overlapping by 0.1 of a
+/// joint, a block strained by 0.1 in a step); a run that passes them may still hold
+/// blocks strained by percents, which no load of these studies produces
+/// (docs/ensembles.md, "Completed and plausible").
+struct RealisationQuality {
+  bool known = false;                ///< false: a record written before it was kept
+  double max_block_strain = 0.0;     ///< largest principal strain of a block in one step [-]
+  double max_aperture_m = 0.0;       ///< largest joint opening of a committed step [m]
+  double max_overlap_m = 0.0;        ///< largest overlap of a joint's faces, committed [m]
+  int max_cycle_holds = 0;           ///< most contacts held by the cycle rule in one step
+  double final_injection_pressure_Pa = 0.0;  ///< at the last committed step (0 without a flow)
+};
+
+/// A block strained by more than this in one step: E / 100, 80-340 MPa in the seed's
+/// rocks (E = 8-34 GPa), five to forty times the largest load of the seed's studies
+/// (far field up to 32 MPa, fluid pressures up to about 20 MPa); the verification
+/// cases' full tiers stay below 0.007 (docs/ensembles.md).
+inline constexpr double kImplausibleStepStrain = 0.01;
+
 struct RealisationRecord {
   long index = 0;
   std::string status;        ///< "completed" or "failed"
@@ -69,7 +90,12 @@ struct RealisationRecord {
   double waited_s = 0.0;        ///< time its process waited for this index after its previous one
   MeshSignature mesh;
   RealisationMaps maps;      ///< one snapshot per map time reached
+  RealisationQuality quality;  ///< of the committed steps
 };
+
+/// A completed realisation whose quality is known and some step of which strained a
+/// block beyond kImplausibleStepStrain.
+bool completed_with_strained_blocks(const RealisationRecord& r);
 
 /// The shared geometry of an ensemble: the mesh's joints (initial end points), their
 /// grid cells and the mesh signature; built once from the case (realisation 0's draws:

@@ -10,6 +10,8 @@
 #include <set>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "ensemble/ensemble_run.hpp"
 #include "ensemble/realisation.hpp"
 #include "io/case_config.hpp"
@@ -118,6 +120,16 @@ TEST(EnsembleRecords, WrittenAtomicallyReadBackAndSkippedOnResume) {
   }
   ASSERT_EQ(back[0].draws.size(), r->draws.size());
   EXPECT_EQ(back[0].draws[0].mean, r->draws[0].mean);  // numbers read back exactly
+  // The quality of its steps is taken from its history and read back exactly.
+  ASSERT_TRUE(r->quality.known);
+  EXPECT_GT(r->quality.max_aperture_m, 0.0);
+  EXPECT_GT(r->quality.max_block_strain, 0.0);
+  EXPECT_LT(r->quality.max_block_strain, ensemble::kImplausibleStepStrain);
+  EXPECT_GT(r->quality.final_injection_pressure_Pa, 0.0);
+  EXPECT_TRUE(back[0].quality.known);
+  EXPECT_EQ(back[0].quality.max_block_strain, r->quality.max_block_strain);
+  EXPECT_EQ(back[0].quality.final_injection_pressure_Pa, r->quality.final_injection_pressure_Pa);
+  EXPECT_EQ(back[0].quality.max_cycle_holds, r->quality.max_cycle_holds);
 
   // The same realisation run again gives the same record (seeds from the index alone).
   const std::optional<ensemble::RealisationRecord> again = ensemble::run_realisation(config, geometry, 5);
@@ -233,6 +245,52 @@ TEST(EnsembleRecords, ScheduleIsKeptAndSummed) {
   EXPECT_NEAR(number_after("busy_s"), 35.0, 1e-9);
   EXPECT_NEAR(number_after("waited_for_index_s"), 1.0, 1e-9);
   EXPECT_NEAR(number_after("idle_at_end_s"), 6.0, 1e-6);
+}
+
+TEST(EnsembleRecords, CompletedRealisationsWithStrainedBlocksAreCountedAndKept) {
+  const io::CaseConfig config = io::load_case_file(kTinyCase);
+  const ensemble::EnsembleGeometry geometry = ensemble::ensemble_geometry(config);
+  const std::string dir = (std::filesystem::path(testing::TempDir()) / "hfdda_ensemble_quality").string();
+  std::filesystem::remove_all(dir);
+  ensemble::prepare_directory(dir, ensemble::make_manifest(config, geometry, {}), geometry);
+  // {status, quality known, largest step strain}: a plausible run, one strained by 3 %,
+  // a failed one (counted as failed only), a record written before quality was kept.
+  struct Run {
+    const char* status;
+    bool known;
+    double strain;
+  };
+  const Run runs[4] = {{"completed", true, 0.002}, {"completed", true, 0.03}, {"failed", true, 0.5},
+                       {"completed", false, 0.0}};
+  for (long i = 0; i < 4; ++i) {
+    ensemble::RealisationRecord r;
+    r.index = i;
+    r.status = runs[i].status;
+    r.seeds = ensemble::realisation_seeds(*config.ensemble, r.index);
+    r.maps.index = r.index;
+    r.maps.snapshots.push_back({{1}, {1}, {0}, {0}});
+    r.mesh = geometry.mesh;
+    r.quality.known = runs[i].known;
+    r.quality.max_block_strain = runs[i].strain;
+    r.quality.max_aperture_m = 0.5;
+    r.quality.final_injection_pressure_Pa = 12.0;
+    ensemble::write_record(dir, r);
+  }
+  EXPECT_FALSE(ensemble::read_record(dir + "/realisations/r000003.json").quality.known);
+  const ensemble::EnsembleSummary summary = ensemble::write_ensemble_maps(dir, {dir});
+  EXPECT_EQ(summary.completed, 3);
+  EXPECT_EQ(summary.failed, 1);
+  EXPECT_EQ(summary.completed_with_strained_blocks, 1);
+  const nlohmann::json s = nlohmann::json::parse(std::ifstream(dir + "/ensemble_summary.json"));
+  const nlohmann::json& p = s.at("plausibility");
+  EXPECT_EQ(p.at("step_strain_limit"), ensemble::kImplausibleStepStrain);
+  EXPECT_EQ(p.at("completed_with_strained_blocks"), 1);
+  EXPECT_EQ(p.at("completed_quality_unknown"), 1);
+  ASSERT_EQ(p.at("strained").size(), 1u);
+  EXPECT_EQ(p.at("strained")[0].at("index"), 1);
+  EXPECT_EQ(p.at("strained")[0].at("max_block_strain"), 0.03);
+  // They stay in the maps: every record's snapshot counts.
+  EXPECT_EQ(s.at("maps")[0].at("realisations"), 4);
 }
 
 }  // namespace

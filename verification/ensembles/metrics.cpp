@@ -159,6 +159,10 @@ Metrics variant_metrics(const VariantRun& r) {
   m.numbers["realisations_failed"] = failed;
   m.numbers["completed_fraction"] = requested > 0 ? completed / requested : kNaN;
   m.numbers["records_missing"] = s.at("missing");
+  // Completed runs that passed the solver's guards with blocks strained by percents;
+  // NaN for summaries written before it was counted.
+  m.numbers["completed_with_strained_blocks"] =
+      s.contains("plausibility") ? double(s.at("plausibility").at("completed_with_strained_blocks")) : kNaN;
   m.numbers["wall_s_per_realisation"] = per_realisation;
   m.numbers["peak_memory_mb_per_process"] = s.value("peak_memory_mb_per_process", 0.0);
   // Busy time of the realisations over the processes' elapsed time.
