@@ -176,6 +176,24 @@ class NetworkScalingTest(unittest.TestCase):
             md = "\n".join(make_benchmarks.scaling_section(write_scaling(Path(tmp) / "s.json", run), None)[0])
         self.assertIn("- **dense: missed**: 10,585 wetted nodes peaked at 5,200 MB.", md)
 
+    def test_memory_of_a_target_size_stopped_at_the_cap_is_a_lower_bound(self):
+        # 10,585 wetted nodes stopped in its warm-up step at 2,540 MB: reported as used until the stop,
+        # never as met; a smaller size stopped at the cap does not count.
+        stop = ("over the time cap: warm-up step 1 used 1200 s CPU (1210 s wall), cap 1200 s CPU per phase; "
+                "stopped (peak resident memory until then {} MB)")
+        run = [scaling_benchmark(2, 1, 1.0, 80.0, cf=1), scaling_benchmark(14, 1, error=stop.format(1600), cf=1),
+               scaling_benchmark(21, 1, error=stop.format(2540), cf=1)]
+        with tempfile.TemporaryDirectory() as tmp:
+            md = "\n".join(make_benchmarks.scaling_section(write_scaling(Path(tmp) / "s.json", run), None)[0])
+        self.assertIn("- **krylov-cf: not measured to the end of a step**: 10,585 wetted nodes had used 2,540 MB "
+                      "when the time cap stopped them (warm-up step 1), a lower bound of the peak (largest "
+                      "measured: 97 wetted nodes at 80 MB).", md)
+        self.assertNotIn("krylov-cf: met", md)
+        # Without the target size, the stopped 4,705-node size leaves the target not measured.
+        with tempfile.TemporaryDirectory() as tmp:
+            md = "\n".join(make_benchmarks.scaling_section(write_scaling(Path(tmp) / "s.json", run[:2]), None)[0])
+        self.assertIn("- **krylov-cf: not measured**: no size with 10,000 or more wetted nodes ran within the cap", md)
+
     def test_four_paths(self):
         # dense (names without the argument and with conjugate_frictionless:0): N^1.5; krylov: N^1.1 up to
         # 4,705 wetted nodes; dense-cf: N^1.3 up to 10,585 in 3 GB; krylov-cf: 97 measured, 217 over the cap.
