@@ -48,7 +48,6 @@ struct MeshSignature {
   bool operator==(const MeshSignature&) const = default;
 };
 
-/// What is kept of one realisation (written as realisations/r<index>.json).
 /// How far a realisation's committed steps are from what elastic rock under its loads
 /// can do, the largest over its steps (history.csv's columns of the same names). A run
 /// completes when every step passes the solver's guards (faces overlapping by 0.1 of a
@@ -70,6 +69,7 @@ struct RealisationQuality {
 /// cases' full tiers stay below 0.007 (docs/ensembles.md).
 inline constexpr double kImplausibleStepStrain = 0.01;
 
+/// What is kept of one realisation (written as realisations/r<index>.json).
 struct RealisationRecord {
   long index = 0;
   std::string status;        ///< "completed" or "failed"
