@@ -62,7 +62,8 @@ class ApertureOperator final : public fluid::ApertureModel {
   double self_entry(int end, int node) const override;
   void factorize(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
                  const Eigen::VectorXd& d) override;
-  Eigen::VectorXd solve(const Eigen::VectorXd& r) override;
+  /// GMRES to the relative preconditioned residual `forcing`, at most kMaxLinearIterations.
+  Eigen::VectorXd solve(const Eigen::VectorXd& r, double forcing) override;
   long products() const override { return products_; }
   long linear_iterations() const override { return iterations_; }
   long inexact_solves() const override { return inexact_solves_; }

@@ -25,7 +25,7 @@ void DenseApertureModel::factorize(const Eigen::SparseMatrix<double>& a, const E
   dgetrf_(&n, &n, jacobian_.data(), &n, pivots_.data(), &lapack_info_);
 }
 
-Eigen::VectorXd DenseApertureModel::solve(const Eigen::VectorXd& r) {
+Eigen::VectorXd DenseApertureModel::solve(const Eigen::VectorXd& r, double /*forcing: solved exactly*/) {
   Eigen::VectorXd x;
   if (lapack_) {
     if (lapack_info_ != 0) throw ConvergenceError("fluid flow: singular mass-balance Jacobian");

@@ -33,7 +33,9 @@ class ApertureModel {
   virtual void factorize(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
                          const Eigen::VectorXd& d) = 0;
   /// x = J^-1 r with the last factorize. Throws ConvergenceError if it fails.
-  virtual Eigen::VectorXd solve(const Eigen::VectorXd& r) = 0;
+  /// `forcing`: the relative residual the caller accepts (the forcing term of an inexact
+  /// Newton iteration); models that solve exactly ignore it, iterative ones may stop there.
+  virtual Eigen::VectorXd solve(const Eigen::VectorXd& r, double forcing) = 0;
   /// Products with S and inner linear iterations since construction (operator models).
   virtual long products() const { return 0; }
   virtual long linear_iterations() const { return 0; }
@@ -55,7 +57,7 @@ class DenseApertureModel final : public ApertureModel {
   double self_entry(int end, int node) const override { return s_(end, node); }
   void factorize(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
                  const Eigen::VectorXd& d) override;
-  Eigen::VectorXd solve(const Eigen::VectorXd& r) override;
+  Eigen::VectorXd solve(const Eigen::VectorXd& r, double forcing) override;
 
  private:
   const Eigen::MatrixXd& s_;

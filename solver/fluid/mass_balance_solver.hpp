@@ -27,6 +27,9 @@ struct FlowSettings {
   double max_closing_fraction = 0.05;
   double tolerance = 1.0e-9;        ///< Newton: relative pressure change and mass residual
   int max_newton_iterations = 60;
+  /// Linear solves that may stop early (iterative aperture models only): at a relative
+  /// residual of 1e-4 while Newton converges well, 1e-10 otherwise; false, always 1e-10.
+  bool inexact_linear_solves = true;
 };
 
 struct FlowSolveStatistics {

@@ -323,6 +323,9 @@ struct NumericsConfig {
   double coupling_tolerance = 1.0e-9;   ///< relative pressure change and mass residual (erratum 2)
   int max_coupling_iterations = 60;     ///< Newton iterations on the pressures per solve
   FlowJacobianKind flow_jacobian = FlowJacobianKind::dense;  ///< dense S or S as an operator
+  /// Krylov path: GMRES may stop early while the flow Newton converges well
+  /// (fluid::FlowSettings::inexact_linear_solves).
+  bool inexact_flow_solves = true;
   ApertureResponse aperture_response = ApertureResponse::fixed_multipliers;
   FluidLoad fluid_load = FluidLoad::integrated;
   int max_step_cuts = 4;                ///< a failed step is retried with dt halved this often

@@ -149,6 +149,12 @@ const Table<NumericsConfig>& numerics_table() {
               &NumericsConfig::flow_jacobian,
               Choices<FlowJacobianKind>{{"dense", FlowJacobianKind::dense},
                                         {"krylov", FlowJacobianKind::krylov}}),
+       boolean({"inexact_flow_solves", "", "none (HFDDA)",
+                "with flow_jacobian: krylov: true, GMRES stops at 1e-4 of the residual while the flow Newton "
+                "converges well (its last step taken whole and the mass residual at least halved) and at 1e-10 "
+                "otherwise and in the fallbacks; false, always at 1e-10. No effect on the dense path, which "
+                "solves exactly (docs/design_notes.md section 43)"},
+               &NumericsConfig::inexact_flow_solves),
        choice({"aperture_response", "", "none (HFDDA)",
                "with method alm: the response of the wetted joints' apertures to the fluid pressures that "
                "the flow solve uses. fixed_multipliers: K with the contact multipliers of the current "

@@ -53,6 +53,7 @@ InitialFill build_flow_network(Model& model, const io::CaseConfig& c) {
   settings.max_closing_fraction = c.numerics.max_closing_fraction;
   settings.tolerance = c.numerics.coupling_tolerance;
   settings.max_newton_iterations = c.numerics.max_coupling_iterations;
+  settings.inexact_linear_solves = c.numerics.inexact_flow_solves;
   model.flow = std::make_unique<fluid::FlowNetwork>(static_cast<int>(m.points.size()), std::move(fractures), props,
                                                     settings);
 
