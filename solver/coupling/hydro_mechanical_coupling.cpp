@@ -90,7 +90,7 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     }
   }
 
-  if (use_krylov()) {
+  if (use_krylov(n)) {
     nodes_of_fracture_.resize(nf);  // the network's connectivity, for the operator's aggregates
     for (int k = 0; k < nf; ++k) {
       const auto& joint = system.mesh().joints[fractures[k]];

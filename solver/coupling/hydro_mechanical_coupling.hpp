@@ -31,9 +31,11 @@ namespace hfdda::coupling {
 /// How the flow Newton's linear systems are solved (docs/design_notes.md, "Flow Jacobian"):
 /// dense: S formed (one solve per node, 64 at a time) and J factorised by dense LU;
 /// krylov: S as an operator, GMRES with the two-level preconditioner (aperture_operator.hpp).
-/// Dense is the default: where the flow Newton needs hundreds of iterations a step (junctions,
-/// fluid-filled starts) the operator's one solve per product loses to it (measured in the notes).
-enum class FlowJacobian { dense, krylov };
+/// automatic: dense below kKrylovFromNodes wetted nodes, krylov from there. Where the flow
+/// Newton needs hundreds of iterations a step (junctions, fluid-filled starts) the
+/// operator's one solve per product loses to the dense LU; the n solves that form S and
+/// its n^2 memory lose to the operator on large networks (docs/design_notes.md section 43).
+enum class FlowJacobian { dense, krylov, automatic };
 
 struct CouplingStatistics {
   int flow_solves = 0;            ///< one per ALM iteration
@@ -97,10 +99,18 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   /// |K X v - B v| / |B v| (v all ones) above which an updated X is dropped and solved
   /// anew: the bound of a corrected factorisation (dda::BlockSystem::kLowRankResidual).
   static constexpr double kResponseResidual = 1e-7;
+  /// FlowJacobian::automatic takes the Krylov path from this many wetted nodes of the trial
+  /// network: between the sizes where the scaling benchmark measured the dense path faster
+  /// (1,945 nodes: 24 against 32 s a step) and slower (2,905 nodes: 45 against 35 s).
+  static constexpr int kKrylovFromNodes = 2500;
+  /// Replaces kKrylovFromNodes (tests).
+  void set_krylov_from_nodes(int nodes) { krylov_from_nodes_ = nodes; }
 
  private:
   void refresh_pressurised();
-  bool use_krylov() const { return jacobian_ == FlowJacobian::krylov; }
+  bool use_krylov(int n_nodes) const {
+    return jacobian_ == FlowJacobian::krylov || (jacobian_ == FlowJacobian::automatic && n_nodes >= krylov_from_nodes_);
+  }
   /// S = J K^-1 B for the current K and network: from the kept X where it can follow
   /// (update_responses, new columns solved), from solves of every column otherwise.
   void form_sensitivity(const dda::BlockSystem& system, const dda::SpdSolver& solver, bool keep);
@@ -131,6 +141,7 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   fluid::FlowNetwork& network_;
   FlowJacobian jacobian_;
   int near_field_hops_ = ApertureOperator::kNearHops;
+  int krylov_from_nodes_ = kKrylovFromNodes;
   bool topology_changed_ = true;
   std::vector<dda::JointEndGap> gaps_;           // per trial fracture end
   std::vector<std::vector<NodeLoad>> loads_;     // per trial node

@@ -281,7 +281,7 @@ enum class AnalysisKind { static_analysis, dynamic_analysis };
 /// How an open-close cycle is resolved (numerics.cycle_resolution).
 enum class CycleResolution { most_open, close_penetrating };
 /// How the flow Newton's linear systems are solved (coupling::FlowJacobian).
-enum class FlowJacobianKind { dense, krylov };
+enum class FlowJacobianKind { dense, krylov, automatic };
 /// Which response of the apertures to the pressures the flow solve uses
 /// (dda::MechanicsSettings::converged_response_stiffening).
 enum class ApertureResponse { fixed_multipliers, converged_contacts };
@@ -322,7 +322,7 @@ struct NumericsConfig {
   double max_closing_fraction = 0.05;   ///< an aperture may close by at most this per step
   double coupling_tolerance = 1.0e-9;   ///< relative pressure change and mass residual (erratum 2)
   int max_coupling_iterations = 60;     ///< Newton iterations on the pressures per solve
-  FlowJacobianKind flow_jacobian = FlowJacobianKind::dense;  ///< dense S or S as an operator
+  FlowJacobianKind flow_jacobian = FlowJacobianKind::automatic;  ///< dense S, S as an operator, or by size
   /// Krylov path: GMRES may stop early while the flow Newton converges well
   /// (fluid::FlowSettings::inexact_linear_solves).
   bool inexact_flow_solves = true;

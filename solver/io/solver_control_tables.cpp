@@ -141,14 +141,17 @@ const Table<NumericsConfig>& numerics_table() {
                "coupled-step stop: relative pressure change and relative mass residual "
                "below it"},
               &NumericsConfig::coupling_tolerance, positive_up_to(1)),
-       choice({"flow_jacobian", "", "",
+       choice({"flow_jacobian", "", "none (HFDDA)",
                "linear solves of the flow Newton iteration: dense (the aperture sensitivity S formed, "
                "one solve per wetted node, and the Jacobian factorised densely), krylov (S as an operator, "
                "one solve per product, GMRES with a two-level preconditioner; memory and cost grow with the "
-               "network, not its square; it pays off only where the flow Newton needs few iterations)"},
+               "network, not its square; it pays off only where the flow Newton needs few iterations), auto "
+               "(dense below 2,500 wetted nodes, krylov from there, where the scaling benchmark measured it "
+               "faster; dense throughout with aperture_response: converged_contacts; design notes section 43)"},
               &NumericsConfig::flow_jacobian,
               Choices<FlowJacobianKind>{{"dense", FlowJacobianKind::dense},
-                                        {"krylov", FlowJacobianKind::krylov}}),
+                                        {"krylov", FlowJacobianKind::krylov},
+                                        {"auto", FlowJacobianKind::automatic}}),
        boolean({"inexact_flow_solves", "", "none (HFDDA)",
                 "with flow_jacobian: krylov: true, GMRES stops at 1e-4 of the residual while the flow Newton "
                 "converges well (its last step taken whole and the mass residual at least halved) and at 1e-10 "

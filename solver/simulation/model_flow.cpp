@@ -98,8 +98,12 @@ InitialFill build_flow_network(Model& model, const io::CaseConfig& c) {
     model.flow->set_vents(std::move(vents));
   }
   for (const auto& probe : c.probes) model.probe_points.push_back(mesh::nearest_point(m, probe.at));
-  const auto jacobian = c.numerics.flow_jacobian == io::FlowJacobianKind::krylov ? coupling::FlowJacobian::krylov
-                                                                               : coupling::FlowJacobian::dense;
+  // The converged contacts' response is formed densely: auto then stays dense.
+  const bool dense_only = c.numerics.aperture_response == io::ApertureResponse::converged_contacts;
+  coupling::FlowJacobian jacobian = coupling::FlowJacobian::dense;
+  if (c.numerics.flow_jacobian == io::FlowJacobianKind::krylov) jacobian = coupling::FlowJacobian::krylov;
+  if (c.numerics.flow_jacobian == io::FlowJacobianKind::automatic && !dense_only)
+    jacobian = coupling::FlowJacobian::automatic;
   model.coupling = std::make_unique<coupling::HydroMechanicalCoupling>(*model.flow, jacobian);
   return fill;
 }

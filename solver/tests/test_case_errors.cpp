@@ -72,7 +72,10 @@ TEST(CaseFileErrors, ConvergedContactResponseNeedsTheAugmentedLagrangian) {
   expect_text_error("numerics: {aperture_response: converged}\n", 1, "numerics.aperture_response",
                     "fixed_multipliers");
   expect_text_error("numerics: {flow_jacobian: krylov,\n  aperture_response: converged_contacts}\n", 2,
-                    "numerics.aperture_response", "flow_jacobian: dense only");
+                    "numerics.aperture_response", "dense flow Jacobian only");
+  // auto (the default) stays dense with the converged contacts' response.
+  EXPECT_NO_THROW(load_case_text("numerics: {flow_jacobian: auto, aperture_response: converged_contacts}\n",
+                                 "response.yaml"));
   EXPECT_NO_THROW(load_case_text("contact: {two_tier: true, normal_stiffness: 30}\n"
                                  "numerics: {aperture_response: converged_contacts, fluid_load: lumped}\n",
                                  "response.yaml"));

@@ -116,6 +116,28 @@ TEST(CoupledStep, KrylovPathGivesTheDenseSolution) {
   EXPECT_LT(krylov.flow->volume_balance_error(), 1e-8);
 }
 
+TEST(CoupledStep, AutomaticFlowJacobianTakesTheKrylovPathFromItsSize) {
+  // flow_jacobian: auto (the default) below kKrylovFromNodes wetted nodes is the dense
+  // path; with the bound lowered under the crack's node count, the Krylov path, to the
+  // same solution.
+  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  ASSERT_EQ(config.numerics.flow_jacobian, io::FlowJacobianKind::automatic);
+  double inlet_Pa[2] = {0.0, 0.0};
+  long products[2] = {0, 0};
+  for (const int from_nodes : {coupling::HydroMechanicalCoupling::kKrylovFromNodes, 1}) {
+    const int k = from_nodes == 1 ? 1 : 0;
+    simulation::Model model = simulation::build_model(config);
+    model.coupling->set_krylov_from_nodes(from_nodes);
+    model.step->advance(1.0, 0);
+    products[k] = model.coupling->statistics().sensitivity_products;
+    inlet_Pa[k] = model.flow->pressure(mesh::nearest_point(model.system->mesh(), Vec2(0, 0)));
+  }
+  EXPECT_EQ(products[0], 0);  // dense: S formed, no products with the operator
+  EXPECT_GT(products[1], 0);
+  EXPECT_GT(inlet_Pa[0], 1e5);
+  EXPECT_NEAR(inlet_Pa[1], inlet_Pa[0], 1e-6 * inlet_Pa[0]);
+}
+
 TEST(CoupledStep, NearFieldOfTheElasticCouplingCutsTheKrylovIterations) {
   // The Krylov path's preconditioner with the probed near field of S in its local part,
   // and without it (A alone): the same Newton iterates, fewer GMRES iterations. Linear
