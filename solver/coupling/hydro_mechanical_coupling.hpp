@@ -101,7 +101,7 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   static constexpr double kResponseResidual = 1e-7;
   /// FlowJacobian::automatic takes the Krylov path from this many wetted nodes of the trial
   /// network: between the sizes where the scaling benchmark measured the dense path faster
-  /// (1,945 nodes: 24 against 32 s a step) and slower (2,905 nodes: 45 against 35 s).
+  /// (1,945 nodes: 24 against 30 s a step) and slower (2,905 nodes: 45 against 32 s).
   static constexpr int kKrylovFromNodes = 2500;
   /// Replaces kKrylovFromNodes (tests).
   void set_krylov_from_nodes(int nodes) { krylov_from_nodes_ = nodes; }
