@@ -130,7 +130,9 @@ std::vector<OutputColumn> make_fixed_columns() {
        "with the dry nodes at their neighbours' pressure, continuation in the step's inflows, the closing joints "
        "held open",
        [](const StepContext& c) { return double(c.stats.flow_newton_restarts); }},
-      {"flow_krylov_iterations", "-", "GMRES iterations of the flow Newton (numerics.flow_jacobian: krylov; 0 otherwise)",
+      {"flow_krylov_iterations", "-",
+       "GMRES iterations of the flow Newton (on the Krylov path: numerics.flow_jacobian krylov, or auto from "
+       "2,500 wetted nodes; 0 otherwise)",
        [](const StepContext& c) { return double(c.stats.flow_krylov_iterations); }},
       {"flow_inexact_linear_solves", "-",
        "GMRES solves that stopped at their iteration limit before their tolerance; Newton used them as inexact "
