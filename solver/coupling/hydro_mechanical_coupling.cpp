@@ -99,6 +99,10 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     operator_ = std::make_unique<ApertureOperator>(system, gaps_, loads_, nodes_of_fracture_, near_field_hops_);
     sensitivity_.resize(0, 0);
     sensitivity_version_ = -1;
+    // The dense path's X (flow_jacobian auto, a network that grew past the bound) is not
+    // used again: its memory is freed.
+    responses_.resize(0, 0);
+    response_version_ = -1;
     topology_changed_ = false;
     stats_.seconds_sensitivity += seconds_since(start);
     return;
