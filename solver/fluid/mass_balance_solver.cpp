@@ -114,9 +114,10 @@ bool MassBalanceSolver::newton(const Eigen::VectorXd& base, ApertureModel& s, Fl
     progress.residual = std::max(0.0, ev.residual.cwiseAbs().maxCoeff() - round_off) / mass_scale;
     const double merit = ev.residual.norm();
     const bool converged_residual = merit <= tol * mass_scale + round_off;
-    // Inexact linear solves only on the line-search path (the first of the fallbacks'
-    // chain) and only while it converges well: near a fold of the mass balance (section
-    // 19) Newton needs its directions almost exactly, and the fallbacks keep them exact.
+    // Inexact linear solves only in line-search mode (the first attempt and the restarts
+    // that reuse it) and only while it converges well: near a fold of the mass balance
+    // (section 19) Newton needs its directions almost exactly; the full-step and
+    // pseudo-transient fallbacks keep them exact.
     const bool converging_well =
         it == 0 || (previous_alpha == 1.0 && merit <= kWellConvergingRatio * previous_merit);
     forcing = settings_.inexact_linear_solves && mode == NewtonStep::line_search && converging_well ? kInexactForcing

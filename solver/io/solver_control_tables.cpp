@@ -153,10 +153,11 @@ const Table<NumericsConfig>& numerics_table() {
                                         {"krylov", FlowJacobianKind::krylov},
                                         {"auto", FlowJacobianKind::automatic}}),
        boolean({"inexact_flow_solves", "", "none (HFDDA)",
-                "with flow_jacobian: krylov: true, GMRES stops at 1e-4 of the residual while the flow Newton "
-                "converges well (its last step taken whole and the mass residual at least halved) and at 1e-10 "
-                "otherwise and in the fallbacks; false, always at 1e-10. No effect on the dense path, which "
-                "solves exactly (docs/design_notes.md section 43)"},
+                "on the Krylov path (flow_jacobian krylov, or auto from 2,500 wetted nodes): true, GMRES stops "
+                "at 1e-4 of the residual while the line-search flow Newton converges well (its first iteration, "
+                "or its last step taken whole and the mass residual at least halved) and at 1e-10 otherwise and "
+                "in the full-step and pseudo-transient fallbacks; false, always at 1e-10. No effect on the dense "
+                "path, which solves exactly (docs/design_notes.md section 43)"},
                &NumericsConfig::inexact_flow_solves),
        choice({"aperture_response", "", "none (HFDDA)",
                "with method alm: the response of the wetted joints' apertures to the fluid pressures that "
