@@ -124,6 +124,21 @@ inline double toughness_of_tensile_strength(double tensile_strength_Pa, double j
   return tensile_strength_Pa * std::sqrt(std::acos(-1.0) * joint_length_m / 2.0);
 }
 
+/// Dimensionless toughness of a plane-strain (KGD) fracture without leak-off,
+///   K_m = K' / (E'^3 mu' Q0)^(1/4),   mu' = 12 mu,
+/// independent of time (Detournay 2004, Int. J. Geomech. 4(1), "Propagation regimes of
+/// fluid-driven fractures in impermeable rocks"): the solution is the K-vertex above for
+/// K_m >~ 4 and the viscosity-dominated M-vertex for K_m <~ 1. Between them the fluid's
+/// pressure drop along the fracture is not negligible and the K-vertex is only an
+/// approximation (docs/design_notes.md section 44). Q0 the total rate [m^2/s], mu [Pa s].
+inline double kgd_dimensionless_toughness(double youngs_modulus_Pa, double poissons_ratio,
+                                          double fracture_toughness_Pa_sqrt_m, double viscosity_Pa_s,
+                                          double total_rate_m2_s) {
+  const double Ep = plane_strain_modulus(youngs_modulus_Pa, poissons_ratio);
+  return scaled_toughness(fracture_toughness_Pa_sqrt_m) /
+         std::pow(Ep * Ep * Ep * 12.0 * viscosity_Pa_s * total_rate_m2_s, 0.25);
+}
+
 /// K-vertex KGD state at one time; every field in SI units.
 struct KgdToughnessSolution {
   double time_s = 0.0;

@@ -138,5 +138,15 @@ TEST(AnalyticalKgdToughness, GrowthLawsAndMatchedToughness) {
   EXPECT_NEAR(toughness_of_tensile_strength(3.536e6, 1.0), 4.43e6, 0.002e6);
 }
 
+TEST(AnalyticalKgdToughness, DimensionlessToughnessOfTheSeedsCases) {
+  // By hand: E'^3 = (26.667e9)^3 = 1.8963e31, mu' Q0 = 12e-6 * 4e-3 = 4.8e-8,
+  // (1.8963e31 * 4.8e-8)^(1/4) = (9.102e23)^(1/4) = 9.768e5; K' = 2.8277e6 for
+  // K_IC = 0.886 MPa m^0.5: K_m = 2.895, in the transition where the K-vertex is approximate.
+  EXPECT_NEAR(kgd_dimensionless_toughness(kE, kNu, kKic, 1e-6, kQ0), 2.895, 0.002);
+  // K_m grows as K_IC and as (mu Q0)^(-1/4): a thousand times slower injection, 1000^(1/4) = 5.62.
+  EXPECT_NEAR(kgd_dimensionless_toughness(kE, kNu, 2.0 * kKic, 1e-6, kQ0) / 2.895, 2.0, 0.002);
+  EXPECT_NEAR(kgd_dimensionless_toughness(kE, kNu, kKic, 1e-6, 1e-3 * kQ0) / 2.895, std::pow(1000.0, 0.25), 0.005);
+}
+
 }  // namespace
 }  // namespace hfdda::analytical

@@ -144,7 +144,14 @@ Metrics variant_metrics(const VariantRun& r) {
   const double max_mass = kgd_max_mass_balance_error(samples);
   const Discreteness d =
       discreteness_of(samples, path.length_m.max, injection.end_time_s - injection.start_time_s);
+  // How far the run is from the K-vertex's regime by its physics alone (analytical/kgd.hpp):
+  // below about 4 the fluid's pressure drop along the fracture is not negligible.
+  const double dimensionless_toughness =
+      analytical::kgd_dimensionless_toughness(injection.youngs_modulus_Pa, injection.poissons_ratio,
+                                              physics.toughness_Pa_sqrt_m, injection.viscosity_Pa_s,
+                                              injection.total_rate_m2_s);
   out.numbers = {{"end_time_s", injection.end_time_s},
+                 {"dimensionless_toughness", dimensionless_toughness},
                  {"max_mass_balance_error", max_mass},
                  {"half_length_m", end ? end->run.half_length_m : kNaN},
                  {"abs_half_length_error", std::abs(error.half_length_m)},
@@ -157,6 +164,7 @@ Metrics variant_metrics(const VariantRun& r) {
   m["path_joint_length_m"] = {finite_or_null(path.length_m.min), finite_or_null(path.length_m.max)};
   m["path_tensile_strength_Pa"] = {finite_or_null(path.t0_Pa.min), finite_or_null(path.t0_Pa.max)};
   m["fracture_toughness_Pa_sqrt_m"] = finite_or_null(physics.toughness_Pa_sqrt_m);
+  m["dimensionless_toughness"] = finite_or_null(dimensionless_toughness);
   m["blocks"] = r.model ? r.model->system->n_blocks() : 0;
   m["max_mass_balance_error"] = finite_or_null(max_mass);
   m["stair_step"] = {{"growth_steps", d.growth_steps},
@@ -183,11 +191,11 @@ Metrics variant_metrics(const VariantRun& r) {
         {"inlet_width_error_vs_offset_ellipse",
          relative_error(end->run.inlet_width_m, end->exact.inlet_width_m * ellipse)}};
   }
-  char line[200];
+  char line[240];
   std::snprintf(line, sizeof line,
-                "K_IC %.4g  path joints %3d  l %+.4f  w0 %+.4f  p0 %+.4f  jumps %d (max %.0f joints)  p rms %.3f  "
+                "K_IC %.4g  K_m %.3g  path joints %3d  l %+.4f  w0 %+.4f  p0 %+.4f  jumps %d (max %.0f joints)  p rms %.3f  "
                 "mass %.2e",
-                physics.toughness_Pa_sqrt_m, path.joints, error.half_length_m, error.inlet_width_m,
+                physics.toughness_Pa_sqrt_m, dimensionless_toughness, path.joints, error.half_length_m, error.inlet_width_m,
                 error.inlet_net_pressure_Pa, d.growth_steps, d.largest_jump_joints, d.p_rms, max_mass);
   out.summary = line;
   return out;
