@@ -41,6 +41,9 @@ FIGURES = {
         ("kgd_toughness_energy_large_t5.png",
          "Toughness criterion, 800 m x 720 m plate (K-vertex's), K_IC = 4.43 and 6.27 MPa m^0.5",
          [("l05_t5_energy_large", "o"), ("l1_t5_energy_large", "s")]),
+        ("kgd_toughness_energy_slow.png",
+         "Toughness criterion in the K-vertex's regime (Q0 / 1000, K_m = 16-23), 800 m x 720 m plate",
+         [("l05_t1_energy_slow", "o"), ("l1_k0886_energy_slow", "x"), ("l1_t1_energy_slow", "s")]),
     ],
     "quick": [
         ("kgd_toughness_quick.png", "KGD toughness storage, quick tier: L = 1 m, T0 = 1 MPa",
@@ -64,8 +67,10 @@ def figure(result_dir, metrics, filename, title, variants):
         if series is not None:
             kgd_plots.draw_run(axes, series, marker, kgd_plots.variant_label(metrics, name, "end"))
             plotted += 1
-    # p0 range from t = 1 s on; the legend where the curves rise from the lower left.
-    kgd_plots.finish(fig, axes, result_dir, filename, title, plotted, pressure_from_s=1.0, pressure_margin=1.3,
+    # p0 range from a tenth of the run on (t = 1 s of the seed's 10 s); the legend where the
+    # curves rise from the lower left.
+    end_s = max((metrics.get(name, {}).get("time_reached_s") or 10.0) for name, _ in variants)
+    kgd_plots.finish(fig, axes, result_dir, filename, title, plotted, pressure_from_s=0.1 * end_s, pressure_margin=1.3,
                      legend_axis=0, pressure_label="inlet pressure p0 [MPa]")
 
 
