@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "analytical/kgd.hpp"
+#include "analytical/kgd_transition.hpp"
 
 namespace hfdda::analytical {
 namespace {
@@ -146,6 +147,46 @@ TEST(AnalyticalKgdToughness, DimensionlessToughnessOfTheSeedsCases) {
   // K_m grows as K_IC and as (mu Q0)^(-1/4): a thousand times slower injection, 1000^(1/4) = 5.62.
   EXPECT_NEAR(kgd_dimensionless_toughness(kE, kNu, 2.0 * kKic, 1e-6, kQ0) / 2.895, 2.0, 0.002);
   EXPECT_NEAR(kgd_dimensionless_toughness(kE, kNu, kKic, 1e-6, 1e-3 * kQ0) / 2.895, std::pow(1000.0, 0.25), 0.005);
+}
+
+// The toughness-and-viscosity KGD (kgd_transition.hpp), checked against its two vertices.
+TEST(AnalyticalKgdTransition, VanishingViscosityGivesTheKVertex) {
+  const KgdTransitionSolution s = kgd_toughness_viscosity(kE, kNu, kKic, 1e-12, kQ0, 10.0);
+  const KgdToughnessSolution k = k_at(10.0);
+  EXPECT_NEAR(s.half_length_m / k.half_length_m, 1.0, 3e-4);  // the seed's constants' rounding
+  EXPECT_NEAR(s.inlet_width_m / k.inlet_width_m, 1.0, 3e-4);
+  EXPECT_NEAR(s.inlet_net_pressure_Pa / k.inlet_net_pressure_Pa, 1.0, 3e-4);
+  EXPECT_NEAR(s.mean_net_pressure_Pa / s.inlet_net_pressure_Pa, 1.0, 1e-6);  // uniform pressure
+}
+
+TEST(AnalyticalKgdTransition, ZeroToughnessGivesTheMVertex) {
+  // The M-vertex's published constants (Gamma 0.61524, Omega0 1.8302, Phi0 0.54495; kgd.hpp)
+  // are five digits; the computed solution meets them within 1e-3.
+  const KgdTransitionSolution s = kgd_toughness_viscosity(kE, kNu, 0.0, kMu, kQ0, 10.0);
+  const KgdViscositySolution m = at(10.0);
+  EXPECT_NEAR(s.half_length_m / m.half_length_m, 1.0, 1e-3);
+  EXPECT_NEAR(s.inlet_width_m / m.inlet_width_seed_form_m, 1.0, 1e-3);
+  EXPECT_NEAR(s.inlet_net_pressure_Pa / m.inlet_net_pressure_seed_form_Pa, 1.0, 1e-3);
+  EXPECT_LT(s.mean_net_pressure_Pa, 0.9 * s.inlet_net_pressure_Pa);  // the viscous drop towards the tips
+}
+
+TEST(AnalyticalKgdTransition, BetweenTheVerticesAndSelfSimilar) {
+  // The seed's toughness case at its viscosity (K_m = 2.9): shorter, wider and at a higher
+  // inlet pressure than the K-vertex, and the same at every time once scaled.
+  const KgdTransitionSolution s = kgd_toughness_viscosity(kE, kNu, kKic, 1e-6, kQ0, 10.0);
+  const KgdToughnessSolution k = k_at(10.0);
+  EXPECT_NEAR(s.dimensionless_toughness, 2.895, 0.002);
+  EXPECT_LT(s.half_length_m, 0.99 * k.half_length_m);
+  EXPECT_GT(s.inlet_width_m, 1.01 * k.inlet_width_m);
+  EXPECT_GT(s.inlet_net_pressure_Pa, 1.05 * k.inlet_net_pressure_Pa);
+  const KgdTransitionSolution later = kgd_toughness_viscosity(kE, kNu, kKic, 1e-6, kQ0, 80.0);
+  const KgdTransitionSolution scaled = scaled_to(s, 80.0);
+  EXPECT_NEAR(later.half_length_m / s.half_length_m, 4.0, 1e-6);
+  EXPECT_NEAR(scaled.half_length_m / later.half_length_m, 1.0, 1e-8);
+  EXPECT_NEAR(scaled.inlet_width_m / later.inlet_width_m, 1.0, 1e-8);
+  EXPECT_NEAR(scaled.inlet_net_pressure_Pa / later.inlet_net_pressure_Pa, 1.0, 1e-8);
+  EXPECT_THROW(kgd_toughness_viscosity(kE, kNu, 0.0, 0.0, kQ0, 10.0), std::invalid_argument);
+  EXPECT_THROW(kgd_toughness_viscosity(kE, kNu, kKic, 1e-6, kQ0, 0.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "analytical/kgd.hpp"
+#include "analytical/kgd_transition.hpp"
 #include "fracture/fracture_criteria.hpp"
 #include "harness.hpp"
 #include "kgd_series.hpp"
@@ -150,7 +151,29 @@ Metrics variant_metrics(const VariantRun& r) {
       analytical::kgd_dimensionless_toughness(injection.youngs_modulus_Pa, injection.poissons_ratio,
                                               physics.toughness_Pa_sqrt_m, injection.viscosity_Pa_s,
                                               injection.total_rate_m2_s);
+  // The same end against the toughness-and-viscosity solution of the run's own fluid
+  // (analytical/kgd_transition.hpp), which the K-vertex approximates for K_m >~ 4.
+  KgdValues error_km{kNaN, kNaN, kNaN};
+  nlohmann::json km_json = nullptr;
+  if (end && std::isfinite(physics.toughness_Pa_sqrt_m)) {
+    const analytical::KgdTransitionSolution km = analytical::kgd_toughness_viscosity(
+        injection.youngs_modulus_Pa, injection.poissons_ratio, physics.toughness_Pa_sqrt_m, injection.viscosity_Pa_s,
+        injection.total_rate_m2_s, end->t);
+    error_km = {relative_error(end->run.half_length_m, km.half_length_m),
+                relative_error(end->run.inlet_width_m, km.inlet_width_m),
+                relative_error(end->run.inlet_net_pressure_Pa, km.inlet_net_pressure_Pa)};
+    km_json = {{"half_length_m", km.half_length_m},
+               {"inlet_width_m", km.inlet_width_m},
+               {"inlet_net_pressure_Pa", km.inlet_net_pressure_Pa},
+               {"mean_net_pressure_Pa", km.mean_net_pressure_Pa},
+               {"error_half_length", error_km.half_length_m},
+               {"error_inlet_width", error_km.inlet_width_m},
+               {"error_inlet_net_pressure", error_km.inlet_net_pressure_Pa}};
+  }
   out.numbers = {{"end_time_s", injection.end_time_s},
+                 {"abs_half_length_error_km", std::abs(error_km.half_length_m)},
+                 {"abs_inlet_width_error_km", std::abs(error_km.inlet_width_m)},
+                 {"abs_inlet_net_pressure_error_km", std::abs(error_km.inlet_net_pressure_Pa)},
                  {"dimensionless_toughness", dimensionless_toughness},
                  {"max_mass_balance_error", max_mass},
                  {"half_length_m", end ? end->run.half_length_m : kNaN},
@@ -165,6 +188,7 @@ Metrics variant_metrics(const VariantRun& r) {
   m["path_tensile_strength_Pa"] = {finite_or_null(path.t0_Pa.min), finite_or_null(path.t0_Pa.max)};
   m["fracture_toughness_Pa_sqrt_m"] = finite_or_null(physics.toughness_Pa_sqrt_m);
   m["dimensionless_toughness"] = finite_or_null(dimensionless_toughness);
+  m["toughness_viscosity_solution_at_end"] = km_json;
   m["blocks"] = r.model ? r.model->system->n_blocks() : 0;
   m["max_mass_balance_error"] = finite_or_null(max_mass);
   m["stair_step"] = {{"growth_steps", d.growth_steps},
