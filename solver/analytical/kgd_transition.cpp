@@ -80,8 +80,9 @@ KgdTransitionSolution kgd_toughness_viscosity(double youngs_modulus_Pa, double p
   for (int it = 1; it <= settings.max_iterations; ++it) {
     const Eigen::ArrayXd w = (mode.transpose() * c).array().max(1e-12 * c[0]);
     const Eigen::ArrayXd beyond = (from_tip.transpose() * c).array();
-    // dp/dx from the lubrication equation, per l^2; its integral from the inlet (theta =
-    // pi/2) towards the tip is the pressure drop, which goes to -infinity as log(theta).
+    // dp/d(x/l) from the lubrication equation, divided by l^2 (the root below chooses l);
+    // its integral from the inlet (theta = pi/2) towards the tip is the pressure drop,
+    // which goes to -infinity as log(theta).
     const Eigen::ArrayXd dp_dxi = -mup * (3.0 * beyond + 2.0 * x_over_l * w) / (3.0 * t * w * w * w);
     const Eigen::ArrayXd rate = dp_dxi * sin_theta * dth;  // d(drop)/d(theta) dtheta, per l^2
     Eigen::ArrayXd drop(N);
