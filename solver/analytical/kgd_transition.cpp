@@ -1,7 +1,6 @@
 #include "analytical/kgd_transition.hpp"
 
 #include <Eigen/Dense>
-#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
