@@ -56,7 +56,9 @@
 // CPU time (default 120 s; CPU time, because a busy neighbour on the shared machine
 // stretches wall time), or 10 times that in wall time. The size is then reported as an
 // error, and the larger sizes of the same path are not started. Peak memory is the
-// child's ru_maxrss (wait4).
+// child's ru_maxrss (wait4). With --trace_dir=DIR each size also writes its progress as
+// it goes (DIR/trace_<path>_<ribs>.csv, class ProgressTrace), for a step that does not end
+// within the cap.
 
 #include "bench_support.hpp"
 
@@ -77,6 +79,7 @@
 #include <exception>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -97,6 +100,7 @@ constexpr int kFactorisationRepeats = 3;
 struct Settings {
   double step_cap_s = 120.0;  // CPU seconds one phase (build, a step) may use
   int timed_steps = 2;
+  std::string trace_dir;      // non-empty: each size writes its progress trace there
 };
 Settings settings;
 
@@ -179,6 +183,47 @@ class Reporter {
   int fd_;
 };
 
+/// Progress of one size as it runs, for a step too long to wait for its counters: one
+/// CSV line (flushed) at every check for a stop request, which the coupled step makes
+/// before each open-close and contact iteration and the flow solve before each Newton
+/// iteration, and one at the end of each open-close iteration and attempt. The
+/// coupling's counters change only when a flow solve ends, so the Newton iterations of
+/// a solve are the "check" lines between two changes of flow_solves.
+class ProgressTrace final : public coupling::IterationObserver {
+ public:
+  ProgressTrace(const std::string& path, const simulation::Model& model) : out_(path), model_(model) {
+    out_ << "cpu_s,wall_s,phase,event,detail,flow_solves,newton_iterations,krylov_iterations,s_products,"
+            "inexact_solves,max_nodes\n" << std::flush;
+  }
+  void set_phase(const std::string& phase) { phase_ = phase; line("phase", ""); }
+  void check() { line("check", ""); }
+  void iteration(const coupling::IterationRecord& r) override {
+    line("open_close", "iteration " + std::to_string(r.iteration) + " dt " + std::to_string(r.attempt_dt_s) +
+                           " changes " + std::to_string(r.contact_changes) + "+" +
+                           std::to_string(r.coupled_changes) + " first '" + r.first_change + "'");
+  }
+  void attempt_ended(double dt_s, int iterations, const std::string& refusal) override {
+    line("attempt_end", "dt " + std::to_string(dt_s) + " iterations " + std::to_string(iterations) +
+                            (refusal.empty() ? " committed" : " refused: " + refusal));
+  }
+
+ private:
+  void line(const char* event, std::string detail) {
+    std::replace(detail.begin(), detail.end(), ',', ';');
+    std::replace(detail.begin(), detail.end(), '\n', ' ');
+    const auto cpu = bench::ProcessCpu::now();
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
+    const auto& c = model_.coupling->statistics();
+    out_ << cpu.user_s + cpu.sys_s << ',' << wall << ',' << phase_ << ',' << event << ',' << detail << ','
+         << c.flow_solves << ',' << c.newton_iterations << ',' << c.krylov_iterations << ','
+         << c.sensitivity_products << ',' << c.inexact_linear_solves << ',' << c.max_nodes << '\n' << std::flush;
+  }
+  std::ofstream out_;
+  const simulation::Model& model_;
+  std::string phase_ = "build";
+  const std::chrono::steady_clock::time_point wall0_ = std::chrono::steady_clock::now();
+};
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
@@ -191,12 +236,28 @@ void run_size(int ribs, bool krylov, bool conjugate_frictionless, Reporter& out)
       io::load_case_text(network_case(ribs, krylov, conjugate_frictionless), "network_scaling.yaml");
   simulation::Model model = simulation::build_model(config);
   const auto build_cpu = bench::ProcessCpu::now() - build_cpu0;
+  std::unique_ptr<ProgressTrace> trace;
+  if (!settings.trace_dir.empty()) {
+    trace = std::make_unique<ProgressTrace>(settings.trace_dir + "/trace_" + (krylov ? "krylov" : "dense") +
+                                                (conjugate_frictionless ? "-cf" : "") + "_" + std::to_string(ribs) +
+                                                ".csv",
+                                            model);
+    model.step->observe_iterations(trace.get());
+    model.step->interrupt_when([t = trace.get()] {
+      t->check();
+      return false;
+    });
+  }
+  auto phase = [&](const std::string& name) {
+    out.phase(name);
+    if (trace) trace->set_phase(name);
+  };
   const double dt_s = config.time.dt_s;
   const int cuts = config.numerics.max_step_cuts;
   const auto warm_up_cpu0 = bench::ProcessCpu::now();
   StepStatistics warm_up;
   for (int s = 0; s < kWarmUpSteps; ++s) {
-    out.phase("warm-up step " + std::to_string(s + 1));
+    phase("warm-up step " + std::to_string(s + 1));
     warm_up.accumulate(model.step->advance(dt_s, cuts));
   }
   const auto warm_up_cpu = bench::ProcessCpu::now() - warm_up_cpu0;
@@ -206,7 +267,7 @@ void run_size(int ribs, bool krylov, bool conjugate_frictionless, Reporter& out)
   double wall_s = 0.0, cpu_s = 0.0, max_step_cpu_s = 0.0;
   long krylov_iterations = 0, sensitivity_products = 0;
   for (int s = 0; s < settings.timed_steps; ++s) {
-    out.phase("timed step " + std::to_string(s + 1));
+    phase("timed step " + std::to_string(s + 1));
     const auto cpu0 = bench::ProcessCpu::now();
     const auto wall0 = std::chrono::steady_clock::now();
     total.accumulate(model.step->advance(dt_s, cuts));
@@ -220,7 +281,7 @@ void run_size(int ribs, bool krylov, bool conjugate_frictionless, Reporter& out)
   }
 
   // One factorisation of K on the contact states the last step ended with.
-  out.phase("factorisation of K");
+  phase("factorisation of K");
   std::vector<double> factorise_wall_s, factorise_cpu_s, factorisation_only_s;
   for (int r = 0; r < kFactorisationRepeats; ++r) {
     StepStatistics stats;
@@ -416,8 +477,8 @@ void BM_NetworkScaling(benchmark::State& state) {
   }
 }
 
-/// Removes --step_cap_s=X and --timed_steps=N from the command line (the benchmark
-/// library refuses flags it does not know).
+/// Removes --step_cap_s=X, --timed_steps=N and --trace_dir=DIR from the command line
+/// (the benchmark library refuses flags it does not know).
 bool take_own_flags(int* argc, char** argv) {
   int kept = 1;
   for (int i = 1; i < *argc; ++i) {
@@ -429,6 +490,9 @@ bool take_own_flags(int* argc, char** argv) {
     if (const char* v = value_of("--step_cap_s=")) {
       settings.step_cap_s = std::atof(v);
       if (!(settings.step_cap_s > 0)) return false;
+    } else if (const char* v = value_of("--trace_dir=")) {
+      settings.trace_dir = v;
+      if (settings.trace_dir.empty()) return false;
     } else if (const char* v = value_of("--timed_steps=")) {
       settings.timed_steps = std::atoi(v);
       if (settings.timed_steps < 1) return false;
@@ -446,7 +510,7 @@ bool take_own_flags(int* argc, char** argv) {
 int main(int argc, char** argv) {
   if (!take_own_flags(&argc, argv)) {
     std::fprintf(stderr, "bench_network_scaling: --step_cap_s needs a number > 0, "
-                         "--timed_steps a whole number >= 1\n");
+                         "--timed_steps a whole number >= 1, --trace_dir a directory\n");
     return 2;
   }
   hfdda::bench::initialize(&argc, argv);
