@@ -81,6 +81,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -188,10 +189,13 @@ class Reporter {
 /// before each open-close and contact iteration and the flow solve before each Newton
 /// iteration, and one at the end of each open-close iteration and attempt. The
 /// coupling's counters change only when a flow solve ends, so the Newton iterations of
-/// a solve are the "check" lines between two changes of flow_solves.
+/// a solve are the "check" lines between two changes of flow_solves, less the one before
+/// the solve. A step cut in sub-steps stops checking once one of them is committed
+/// (CoupledStep::interrupt_when), so its later sub-steps show only their iterations.
 class ProgressTrace final : public coupling::IterationObserver {
  public:
   ProgressTrace(const std::string& path, const simulation::Model& model) : out_(path), model_(model) {
+    if (!out_) throw std::runtime_error("cannot write the progress trace " + path);
     out_ << "cpu_s,wall_s,phase,event,detail,flow_solves,newton_iterations,krylov_iterations,s_products,"
             "inexact_solves,max_nodes\n" << std::flush;
   }
