@@ -13,10 +13,11 @@ namespace hfdda::coupling {
 namespace {
 constexpr int kMaxLinearIterations = 400;
 /// Never restarted: a product with S (a solve with K) costs far more than keeping and
-/// applying every Krylov vector (400 of them on 10,585 nodes: 34 MB, well under a
-/// second of Householder work per solve). Restarted every 80 iterations, GMRES stalled
-/// on the scaling benchmark's 10,585-node network (a relative residual of 0.9 after
-/// 400 iterations) where it converges unrestarted in about 200 (design notes 45).
+/// applying every Krylov vector (400 of them on 10,585 nodes take 34 MB, and an
+/// iteration took 0.15 s there unrestarted, 0.14 s restarted). Restarted every 80
+/// iterations, GMRES stalled on the scaling benchmark's 10,585-node network (a relative
+/// residual of 0.9 after 400 iterations) where it converges unrestarted in about 200
+/// (design notes 45).
 constexpr int kRestart = kMaxLinearIterations;
 /// Right-hand sides per solve when S P and the near field are formed.
 constexpr int kColumnsPerSolve = 64;
