@@ -1,6 +1,8 @@
 // Network scaling: time per coupled hydro-mechanical step against the number of wetted
 // nodes, from about 100 to about 10,000, on a family of fracture networks already full
-// of fluid, with the flow Newton's Jacobian dense or applied as an operator (krylov).
+// of fluid, with the flow Newton's Jacobian dense, or S applied as an operator and the
+// Newton steps solved by GMRES (krylov) or by a sparse LU of the augmented system
+// (augmented).
 //
 // The network. The stochastic generator (fracture_sets) cannot start its fractures open
 // and full of fluid (no fluid_filled key; its fractures take in fluid through w0 only once
@@ -92,6 +94,8 @@ namespace {
 
 using namespace hfdda;
 
+/// numerics.flow_jacobian of each path, by the benchmark argument `jacobian`.
+constexpr const char* kJacobianNames[] = {"dense", "krylov", "augmented"};
 constexpr int kRibSpacingM = 8;     // distance between ribs
 constexpr int kBranchSpacingM = 2;  // distance between branches along a rib
 constexpr int kBranchHalfM = 2;     // half-length of a branch (< half the rib spacing: no cycles)
@@ -109,7 +113,7 @@ Settings settings;
 int expected_wetted_nodes(int ribs) { return 24 * ribs * ribs + 1; }
 
 /// The case file of the network with `ribs` ribs (see the file comment).
-std::string network_case(int ribs, bool krylov, bool conjugate_frictionless) {
+std::string network_case(int ribs, int jacobian, bool conjugate_frictionless) {
   const int half_height = 4 * ribs;        // trunk and ribs reach +-4 ribs m
   const int inner = half_height + 4;       // inner (1 m cells) half-width
   const int outer = 2 * inner;             // coarser outer ring
@@ -144,7 +148,7 @@ std::string network_case(int ribs, bool krylov, bool conjugate_frictionless) {
        << "fixed_points: [[" << -outer << ", " << -outer << "], [" << outer << ", " << -outer << "], [" << outer
        << ", " << outer << "], [" << -outer << ", " << outer << "]]\n"
        << "contact: {method: penalty}\n"
-       << "numerics: {flow_jacobian: " << (krylov ? "krylov" : "dense")
+       << "numerics: {flow_jacobian: " << kJacobianNames[jacobian]
        << (conjugate_frictionless ? ", fluid_load: lumped" : "") << "}\n"
        << "time: {dt: 1.0, end_time: " << kWarmUpSteps + settings.timed_steps << ".0}\n"
        << "output: {every_steps: 0, vtu: false}\n";
@@ -233,16 +237,16 @@ double median(std::vector<double> v) {
   return 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
 }
 
-void run_size(int ribs, bool krylov, bool conjugate_frictionless, Reporter& out) {
+void run_size(int ribs, int jacobian, bool conjugate_frictionless, Reporter& out) {
   out.phase("building the model");
   const auto build_cpu0 = bench::ProcessCpu::now();
   const io::CaseConfig config =
-      io::load_case_text(network_case(ribs, krylov, conjugate_frictionless), "network_scaling.yaml");
+      io::load_case_text(network_case(ribs, jacobian, conjugate_frictionless), "network_scaling.yaml");
   simulation::Model model = simulation::build_model(config);
   const auto build_cpu = bench::ProcessCpu::now() - build_cpu0;
   std::unique_ptr<ProgressTrace> trace;
   if (!settings.trace_dir.empty()) {
-    trace = std::make_unique<ProgressTrace>(settings.trace_dir + "/trace_" + (krylov ? "krylov" : "dense") +
+    trace = std::make_unique<ProgressTrace>(settings.trace_dir + "/trace_" + kJacobianNames[jacobian] +
                                                 (conjugate_frictionless ? "-cf" : "") + "_" + std::to_string(ribs) +
                                                 ".csv",
                                             model);
@@ -323,10 +327,10 @@ void run_size(int ribs, bool krylov, bool conjugate_frictionless, Reporter& out)
   out.result("flow_s_per_step", total.seconds_flow / steps);
 }
 
-[[noreturn]] void child_main(int ribs, bool krylov, bool conjugate_frictionless, int fd) {
+[[noreturn]] void child_main(int ribs, int jacobian, bool conjugate_frictionless, int fd) {
   Reporter out(fd);
   try {
-    run_size(ribs, krylov, conjugate_frictionless, out);
+    run_size(ribs, jacobian, conjugate_frictionless, out);
     out.done();
   } catch (const std::exception& e) {
     out.error(e.what());
@@ -360,7 +364,7 @@ struct ChildOutcome {
   double peak_rss_mb = 0;  // ru_maxrss of the child
 };
 
-ChildOutcome run_in_child(int ribs, bool krylov, bool conjugate_frictionless) {
+ChildOutcome run_in_child(int ribs, int jacobian, bool conjugate_frictionless) {
   ChildOutcome outcome;
   int fds[2];
   if (pipe(fds) != 0) {
@@ -375,7 +379,7 @@ ChildOutcome run_in_child(int ribs, bool krylov, bool conjugate_frictionless) {
   }
   if (pid == 0) {
     ::close(fds[0]);
-    child_main(ribs, krylov, conjugate_frictionless, fds[1]);
+    child_main(ribs, jacobian, conjugate_frictionless, fds[1]);
   }
   ::close(fds[1]);
 
@@ -445,18 +449,19 @@ ChildOutcome run_in_child(int ribs, bool krylov, bool conjugate_frictionless) {
   return outcome;
 }
 
-// Per path (krylov, conjugate_frictionless), the smallest size that went over the cap:
+// Per path (jacobian, conjugate_frictionless), the smallest size that went over the cap:
 // larger ones are not started.
-std::map<std::pair<bool, bool>, int> capped_at;
+std::map<std::pair<int, bool>, int> capped_at;
 
-// range(0): ribs; range(1): 0 dense, 1 krylov flow Jacobian; range(2): 1 for the lumped
-// face load and frictionless faces (see the file comment).
+// range(0): ribs; range(1): the flow Jacobian, index into kJacobianNames (0 dense,
+// 1 krylov, 2 augmented); range(2): 1 for the lumped face load and frictionless faces
+// (see the file comment).
 void BM_NetworkScaling(benchmark::State& state) {
   const int ribs = static_cast<int>(state.range(0));
-  const bool krylov = state.range(1) != 0;
+  const int jacobian = static_cast<int>(state.range(1));
   const bool conjugate_frictionless = state.range(2) != 0;
-  const std::pair<bool, bool> path{krylov, conjugate_frictionless};
-  state.SetLabel(std::string(krylov ? "krylov" : "dense") + (conjugate_frictionless ? "-cf" : ""));
+  const std::pair<int, bool> path{jacobian, conjugate_frictionless};
+  state.SetLabel(std::string(kJacobianNames[jacobian]) + (conjugate_frictionless ? "-cf" : ""));
   state.counters["ribs"] = ribs;
   state.counters["expected_wetted_nodes"] = expected_wetted_nodes(ribs);
   state.counters["step_cap_s"] = settings.step_cap_s;
@@ -467,7 +472,7 @@ void BM_NetworkScaling(benchmark::State& state) {
                               .c_str());
       break;
     }
-    const ChildOutcome outcome = run_in_child(ribs, krylov, conjugate_frictionless);
+    const ChildOutcome outcome = run_in_child(ribs, jacobian, conjugate_frictionless);
     state.counters["peak_rss_mb"] = outcome.peak_rss_mb;
     if (!outcome.error.empty()) {
       if (outcome.capped) capped_at[path] = ribs;
@@ -527,9 +532,9 @@ int main(int argc, char** argv) {
   const std::vector<int> ribs = {2, 3, 4, 5, 6, 7, 9, 11, 14, 17, 21};
   auto* bench = benchmark::RegisterBenchmark("BM_NetworkScaling", BM_NetworkScaling);
   for (int conjugate_frictionless : {0, 1})
-    for (int krylov : {0, 1})
-      for (int r : ribs) bench->Args({r, krylov, conjugate_frictionless});
-  bench->ArgNames({"ribs", "krylov", "conjugate_frictionless"})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+    for (int jacobian : {0, 1, 2})
+      for (int r : ribs) bench->Args({r, jacobian, conjugate_frictionless});
+  bench->ArgNames({"ribs", "jacobian", "conjugate_frictionless"})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

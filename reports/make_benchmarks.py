@@ -19,8 +19,8 @@ N over CPU at 1). --comparison adds a Markdown section (benchmarks/compare_basel
 after the header.
 
 --scaling adds the section "Network scaling" from a run of bench_network_scaling: per
-flow-Jacobian path (dense, krylov, and dense-cf, krylov-cf with a lumped face load and
-frictionless faces) and size, wetted nodes, blocks, CPU and wall time per coupled step,
+flow-Jacobian path (dense, krylov, augmented, and dense-cf, krylov-cf, augmented-cf with
+a lumped face load and frictionless faces) and size, wetted nodes, blocks, CPU and wall time per coupled step,
 one factorisation of K and their ratio, Newton and Krylov iterations, peak memory; the
 exponent of time per step in wetted nodes fitted by least squares on log-log (sizes
 >= 1,000 wetted nodes, and all sizes), the targets (at most N^1.2 from 1,000 to 10,000
@@ -240,9 +240,11 @@ def render_file(path: Path) -> tuple[list[str], bool]:
 
 SCALING_BEGIN = "<!-- network-scaling:begin -->"
 SCALING_END = "<!-- network-scaling:end -->"
-SCALING_NAME = re.compile(r"BM_NetworkScaling/ribs:(\d+)/krylov:([01])(?:/conjugate_frictionless:([01]))?")
-# The paths in report order, indexed by krylov + 2 conjugate_frictionless (absent: 0, runs before it had it).
-SCALING_PATHS = ("dense", "krylov", "dense-cf", "krylov-cf")
+# The flow-Jacobian argument was named `krylov` (0 dense, 1 krylov) before the augmented
+# path (2) was added and it was renamed `jacobian`; stored runs use either name.
+SCALING_NAME = re.compile(r"BM_NetworkScaling/ribs:(\d+)/(?:krylov|jacobian):([012])(?:/conjugate_frictionless:([01]))?")
+# The paths in report order, indexed by jacobian + 3 conjugate_frictionless (absent: 0, runs before it had it).
+SCALING_PATHS = ("dense", "krylov", "augmented", "dense-cf", "krylov-cf", "augmented-cf")
 SCALING_FIGURE = "figures/network_scaling.png"
 TARGET_EXPONENT = 1.2            # time per step at most N^1.2 ...
 TARGET_NODES = (1000, 10000)     # ... from 1,000 to 10,000 wetted nodes
@@ -267,7 +269,7 @@ def scaling_rows(benches: list[dict]) -> list[dict]:
             continue
         ribs = int(m.group(1))
         row = {k: float(v) for k, v in b.items() if is_number(v) and k not in STANDARD_KEYS}
-        path = SCALING_PATHS[int(m.group(2)) + 2 * int(m.group(3) or 0)]
+        path = SCALING_PATHS[int(m.group(2)) + 3 * int(m.group(3) or 0)]
         row.update({"path": path, "ribs": ribs, "error": failed(b),
                     "nodes": int(b["wetted_nodes"]) if is_number(b.get("wetted_nodes")) else fishbone_nodes(ribs)})
         rows.append(row)
@@ -406,8 +408,8 @@ def draw_scaling_figure(rows: list[dict], fits: dict, cap_s: float | None, path:
     fig, ax = plt.subplots(figsize=(10.0, 5.0))
     # Per path: colour, marker, and where its sizes not measured are drawn relative to the cap line
     # (above and below it in turn, so that all paths show).
-    styles = zip(SCALING_PATHS, ("tab:blue", "tab:orange", "tab:green", "tab:red"), ("o", "s", "^", "D"),
-                 (1.25, 0.8, 1.5, 0.65))
+    styles = zip(SCALING_PATHS, ("tab:blue", "tab:orange", "tab:purple", "tab:green", "tab:red", "tab:brown"),
+                 ("o", "s", "v", "^", "D", "P"), (1.25, 0.8, 1.1, 1.5, 0.65, 0.9))
     all_nodes, present = [r["nodes"] for r in rows], present_paths(rows)
     for p, colour, marker, cap_factor in (s for s in styles if s[0] in present):
         ok = measured(rows, p)

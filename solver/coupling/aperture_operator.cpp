@@ -46,10 +46,24 @@ struct TwoLevel {
 
 ApertureOperator::ApertureOperator(const dda::BlockSystem& system, const std::vector<dda::JointEndGap>& gaps,
                                    const std::vector<std::vector<NodeLoad>>& loads,
-                                   const std::vector<std::array<int, 2>>& nodes_of_fracture, int near_hops)
+                                   const std::vector<std::array<int, 2>>& nodes_of_fracture, int near_hops,
+                                   FlowLinearSolve linear_solve)
     : system_(system), gaps_(gaps), loads_(loads) {
   build_aggregates(nodes_of_fracture);
+  rhs_.setZero(6 * system_.n_blocks());
+  if (linear_solve == FlowLinearSolve::augmented) {
+    // The LU needs neither the coarse space nor the near field; S P is formed only if
+    // self_entry is asked for (the pseudo-transient fallback).
+    augmented_ = std::make_unique<AugmentedFlowSystem>(system, gaps, loads);
+    return;
+  }
   if (near_hops > 0) build_near_field(nodes_of_fracture, near_hops);
+  form_probes();
+}
+
+ApertureOperator::~ApertureOperator() = default;
+
+void ApertureOperator::form_probes() const {
   // S P and the probes of the near field: solves with one right-hand side per aggregate
   // and per colour, kColumnsPerSolve at a time (the block system's unknowns times the
   // columns is what a solve holds, several times over inside CHOLMOD).
@@ -75,7 +89,7 @@ ApertureOperator::ApertureOperator(const dda::BlockSystem& system, const std::ve
         }
     }
   }
-  rhs_.setZero(6 * nb);
+  probes_formed_ = true;
 }
 
 void ApertureOperator::build_near_field(const std::vector<std::array<int, 2>>& nodes_of_fracture, int near_hops) {
@@ -163,6 +177,7 @@ void ApertureOperator::apply(const Eigen::VectorXd& p, Eigen::VectorXd& out) con
 }
 
 double ApertureOperator::self_entry(int end, int node) const {
+  if (!probes_formed_) form_probes();
   const int c = aggregate_[node];
   return s_times_p_(end, c) / aggregate_size_[c];
 }
@@ -170,6 +185,10 @@ double ApertureOperator::self_entry(int end, int node) const {
 void ApertureOperator::factorize(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
                                  const Eigen::VectorXd& d) {
   a_ = a, e_ = e, d_ = d;
+  if (augmented_) {
+    augmented_->factorize(a, e, d);
+    return;
+  }
   const int n = n_nodes(), m = n_aggregates();
   if (n_colours_ > 0) {
     // Local part with the probed near field of S: A + E S_near diag(d). A probe also
@@ -221,6 +240,7 @@ Eigen::VectorXd ApertureOperator::precondition(const Eigen::VectorXd& v) const {
 }
 
 Eigen::VectorXd ApertureOperator::solve(const Eigen::VectorXd& r, double forcing) {
+  if (augmented_) return augmented_->solve(r);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n_nodes());
   Eigen::Index iterations = kMaxLinearIterations;
   double error = forcing;

@@ -90,13 +90,15 @@ void HydroMechanicalCoupling::prepare(const dda::BlockSystem& system, bool stiff
     }
   }
 
-  if (use_krylov(n)) {
+  if (use_operator(n)) {
     nodes_of_fracture_.resize(nf);  // the network's connectivity, for the operator's aggregates
     for (int k = 0; k < nf; ++k) {
       const auto& joint = system.mesh().joints[fractures[k]];
       nodes_of_fracture_[k] = {network_.node_index(joint.point_p), network_.node_index(joint.point_q)};
     }
-    operator_ = std::make_unique<ApertureOperator>(system, gaps_, loads_, nodes_of_fracture_, near_field_hops_);
+    operator_ = std::make_unique<ApertureOperator>(
+        system, gaps_, loads_, nodes_of_fracture_, near_field_hops_,
+        jacobian_ == FlowJacobian::krylov ? FlowLinearSolve::gmres : FlowLinearSolve::augmented);
     sensitivity_.resize(0, 0);
     sensitivity_version_ = -1;
     // The dense path's X (flow_jacobian auto, a network that grew past the bound) is not

@@ -31,11 +31,16 @@ namespace hfdda::coupling {
 /// How the flow Newton's linear systems are solved (docs/design_notes.md, "Flow Jacobian"):
 /// dense: S formed (one solve per node, 64 at a time) and J factorised by dense LU;
 /// krylov: S as an operator, GMRES with the two-level preconditioner (aperture_operator.hpp).
-/// automatic: dense below kKrylovFromNodes wetted nodes, krylov from there. Where the flow
-/// Newton needs hundreds of iterations a step (junctions, fluid-filled starts) the
-/// operator's one solve per product loses to the dense LU; the n solves that form S and
-/// its n^2 memory lose to the operator on large networks (docs/design_notes.md section 43).
-enum class FlowJacobian { dense, krylov, automatic };
+/// augmented: S as an operator, each Newton step one sparse LU of the augmented system
+/// [K -B D; E G A] (augmented_flow_system.hpp; docs/design_notes.md section 46).
+/// automatic: dense below kOperatorFromNodes wetted nodes, augmented from there. Where the
+/// flow Newton needs hundreds of iterations a step (junctions, fluid-filled starts) the
+/// operator paths lose to the dense LU; the n solves that form S and its n^2 memory lose
+/// to them on large networks (docs/design_notes.md section 43). The augmented LU was
+/// measured 7 % faster than GMRES at 2,905 nodes, 16 % at 4,705, 29 % at 6,937 and 5.2
+/// times at 10,585, where the two-level preconditioner needed about 200 iterations
+/// (section 46).
+enum class FlowJacobian { dense, krylov, augmented, automatic };
 
 struct CouplingStatistics {
   int flow_solves = 0;            ///< one per ALM iteration
@@ -99,17 +104,20 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   /// |K X v - B v| / |B v| (v all ones) above which an updated X is dropped and solved
   /// anew: the bound of a corrected factorisation (dda::BlockSystem::kLowRankResidual).
   static constexpr double kResponseResidual = 1e-7;
-  /// FlowJacobian::automatic takes the Krylov path from this many wetted nodes of the trial
-  /// network: between the sizes where the scaling benchmark measured the dense path faster
-  /// (1,945 nodes: 24 against 30 s a step) and slower (2,905 nodes: 45 against 32 s).
-  static constexpr int kKrylovFromNodes = 2500;
-  /// Replaces kKrylovFromNodes (tests).
-  void set_krylov_from_nodes(int nodes) { krylov_from_nodes_ = nodes; }
+  /// FlowJacobian::automatic takes the augmented path from this many wetted nodes of the
+  /// trial network: between the sizes where the scaling benchmark measured the dense path
+  /// faster (1,945 nodes: 24 s a step against 30 s with GMRES and 37 s augmented) and
+  /// slower (2,905 nodes: 45 s against 32 and 30 s).
+  static constexpr int kOperatorFromNodes = 2500;
+  /// Replaces kOperatorFromNodes (tests).
+  void set_operator_from_nodes(int nodes) { operator_from_nodes_ = nodes; }
 
  private:
   void refresh_pressurised();
-  bool use_krylov(int n_nodes) const {
-    return jacobian_ == FlowJacobian::krylov || (jacobian_ == FlowJacobian::automatic && n_nodes >= krylov_from_nodes_);
+  /// S as an operator (GMRES or the augmented LU) rather than formed densely.
+  bool use_operator(int n_nodes) const {
+    return jacobian_ == FlowJacobian::krylov || jacobian_ == FlowJacobian::augmented ||
+           (jacobian_ == FlowJacobian::automatic && n_nodes >= operator_from_nodes_);
   }
   /// S = J K^-1 B for the current K and network: from the kept X where it can follow
   /// (update_responses, new columns solved), from solves of every column otherwise.
@@ -141,7 +149,7 @@ class HydroMechanicalCoupling final : public FluidLoadModel {
   fluid::FlowNetwork& network_;
   FlowJacobian jacobian_;
   int near_field_hops_ = ApertureOperator::kNearHops;
-  int krylov_from_nodes_ = kKrylovFromNodes;
+  int operator_from_nodes_ = kOperatorFromNodes;
   bool topology_changed_ = true;
   std::vector<dda::JointEndGap> gaps_;           // per trial fracture end
   std::vector<std::vector<NodeLoad>> loads_;     // per trial node

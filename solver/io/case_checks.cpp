@@ -320,7 +320,7 @@ void check_aperture_response(const CaseConfig& c, const MergedChecker& m) {
     m.fail("numerics.aperture_response",
            "converged_contacts needs contact.method: alm (with penalty springs the response at fixed "
            "multipliers is the converged one)");
-  if (c.numerics.flow_jacobian == FlowJacobianKind::krylov)
+  if (c.numerics.flow_jacobian == FlowJacobianKind::krylov || c.numerics.flow_jacobian == FlowJacobianKind::augmented)
     m.fail("numerics.aperture_response",
            "converged_contacts is implemented for the dense flow Jacobian only (flow_jacobian: dense, or auto, "
            "which then stays dense)");
@@ -446,7 +446,7 @@ const std::vector<CrossCheck>& cross_checks() {
        "`shear_stiffness` is at most 1e6.",
        check_intact_stiffness},
       {"`numerics.aperture_response: converged_contacts` needs `contact.method: alm` and a `numerics.flow_jacobian` "
-       "other than `krylov`, and the iterated springs' stiffness factor (times `intact_stiffness_ratio` with `two_tier`) times 100 is at most 1e6.",
+       "of `dense` or `auto` (not `krylov` or `augmented`), and the iterated springs' stiffness factor (times `intact_stiffness_ratio` with `two_tier`) times 100 is at most 1e6.",
        check_aperture_response},
       {"Both ends of every fracture lie in `domain.outer` (its boundary included).",
        check_fractures_in_domain},

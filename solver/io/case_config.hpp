@@ -281,7 +281,7 @@ enum class AnalysisKind { static_analysis, dynamic_analysis };
 /// How an open-close cycle is resolved (numerics.cycle_resolution).
 enum class CycleResolution { most_open, close_penetrating };
 /// How the flow Newton's linear systems are solved (coupling::FlowJacobian).
-enum class FlowJacobianKind { dense, krylov, automatic };
+enum class FlowJacobianKind { dense, krylov, augmented, automatic };
 /// Which response of the apertures to the pressures the flow solve uses
 /// (dda::MechanicsSettings::converged_response_stiffening).
 enum class ApertureResponse { fixed_multipliers, converged_contacts };

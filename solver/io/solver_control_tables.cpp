@@ -145,15 +145,18 @@ const Table<NumericsConfig>& numerics_table() {
                "linear solves of the flow Newton iteration: dense (the aperture sensitivity S formed, "
                "one solve per wetted node, and the Jacobian factorised densely), krylov (S as an operator, "
                "one solve per product, GMRES with a two-level preconditioner; memory and cost grow with the "
-               "network, not its square; it pays off only where the flow Newton needs few iterations), auto "
-               "(dense below 2,500 wetted nodes, krylov from there, where the scaling benchmark measured it "
-               "faster; dense throughout with aperture_response: converged_contacts; design notes section 43)"},
+               "network, not its square; it pays off only where the flow Newton needs few iterations), augmented (S "
+               "as an operator, each Newton step one sparse LU of the flow balance together with the block "
+               "displacements, UMFPACK; no Krylov iteration; design notes section 46), auto "
+               "(dense below 2,500 wetted nodes, augmented from there, where the scaling benchmark measured it "
+               "faster; dense throughout with aperture_response: converged_contacts; design notes sections 43 and 46)"},
               &NumericsConfig::flow_jacobian,
               Choices<FlowJacobianKind>{{"dense", FlowJacobianKind::dense},
                                         {"krylov", FlowJacobianKind::krylov},
+                                        {"augmented", FlowJacobianKind::augmented},
                                         {"auto", FlowJacobianKind::automatic}}),
        boolean({"inexact_flow_solves", "", "none (HFDDA)",
-                "on the Krylov path (flow_jacobian krylov, or auto from 2,500 wetted nodes): true, GMRES stops "
+                "on the Krylov path (flow_jacobian krylov): true, GMRES stops "
                 "at 1e-4 of the residual while the line-search flow Newton converges well (its first iteration, "
                 "or its last step taken whole and the mass residual at least halved) and at 1e-10 otherwise and "
                 "in the full-step and pseudo-transient fallbacks; false, always at 1e-10. No effect on the dense "

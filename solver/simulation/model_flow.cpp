@@ -102,6 +102,7 @@ InitialFill build_flow_network(Model& model, const io::CaseConfig& c) {
   const bool dense_only = c.numerics.aperture_response == io::ApertureResponse::converged_contacts;
   coupling::FlowJacobian jacobian = coupling::FlowJacobian::dense;
   if (c.numerics.flow_jacobian == io::FlowJacobianKind::krylov) jacobian = coupling::FlowJacobian::krylov;
+  if (c.numerics.flow_jacobian == io::FlowJacobianKind::augmented) jacobian = coupling::FlowJacobian::augmented;
   if (c.numerics.flow_jacobian == io::FlowJacobianKind::automatic && !dense_only)
     jacobian = coupling::FlowJacobian::automatic;
   model.coupling = std::make_unique<coupling::HydroMechanicalCoupling>(*model.flow, jacobian);

@@ -131,8 +131,7 @@ std::vector<OutputColumn> make_fixed_columns() {
        "held open",
        [](const StepContext& c) { return double(c.stats.flow_newton_restarts); }},
       {"flow_krylov_iterations", "-",
-       "GMRES iterations of the flow Newton (on the Krylov path: numerics.flow_jacobian krylov, or auto from "
-       "2,500 wetted nodes; 0 otherwise)",
+       "GMRES iterations of the flow Newton (on the Krylov path, numerics.flow_jacobian krylov; 0 otherwise)",
        [](const StepContext& c) { return double(c.stats.flow_krylov_iterations); }},
       {"flow_inexact_linear_solves", "-",
        "GMRES solves that stopped at their iteration limit before their tolerance; Newton used them as inexact "

@@ -80,6 +80,28 @@ TEST(CoupledStep, MatchesMechanicsLoadedByTheSolvedPressures) {
   EXPECT_LT(flow.mass_balance_error(), 1e-12);
 }
 
+/// Largest pressure and aperture of the wetted joints of `reference`, and the largest
+/// differences from `other` (the same case run on another flow-Jacobian path).
+struct FlowPathDifference {
+  double max_pressure = 0.0, max_aperture = 0.0, pressure = 0.0, aperture = 0.0;
+};
+FlowPathDifference flow_path_difference(const simulation::Model& reference, const simulation::Model& other) {
+  const auto& mesh = reference.system->mesh();
+  FlowPathDifference d;
+  for (int j = 0; j < static_cast<int>(mesh.joints.size()); ++j) {
+    EXPECT_EQ(reference.flow->wetted(j), other.flow->wetted(j)) << "joint " << j;
+    if (!reference.flow->wetted(j)) continue;
+    for (int end = 0; end < 2; ++end) {
+      const int point = end == 0 ? mesh.joints[j].point_p : mesh.joints[j].point_q;
+      d.max_pressure = std::max(d.max_pressure, reference.flow->pressure(point));
+      d.pressure = std::max(d.pressure, std::abs(reference.flow->pressure(point) - other.flow->pressure(point)));
+      d.max_aperture = std::max(d.max_aperture, reference.flow->aperture(j, end));
+      d.aperture = std::max(d.aperture, std::abs(reference.flow->aperture(j, end) - other.flow->aperture(j, end)));
+    }
+  }
+  return d;
+}
+
 TEST(CoupledStep, KrylovPathGivesTheDenseSolution) {
   // The same steps with S formed densely and with S as an operator (GMRES, two-level
   // preconditioner): the pressures and apertures agree to the flow tolerance, and the
@@ -94,46 +116,64 @@ TEST(CoupledStep, KrylovPathGivesTheDenseSolution) {
     dense.step->advance(1.0, 0);
     krylov_stats = krylov.step->advance(1.0, 0);
   }
-  const auto& mesh = dense.system->mesh();
-  double max_pressure = 0.0, max_aperture = 0.0, pressure_difference = 0.0, aperture_difference = 0.0;
-  for (int j = 0; j < static_cast<int>(mesh.joints.size()); ++j) {
-    ASSERT_EQ(dense.flow->wetted(j), krylov.flow->wetted(j));
-    if (!dense.flow->wetted(j)) continue;
-    for (int end = 0; end < 2; ++end) {
-      const int point = end == 0 ? mesh.joints[j].point_p : mesh.joints[j].point_q;
-      max_pressure = std::max(max_pressure, dense.flow->pressure(point));
-      pressure_difference = std::max(pressure_difference, std::abs(dense.flow->pressure(point) - krylov.flow->pressure(point)));
-      max_aperture = std::max(max_aperture, dense.flow->aperture(j, end));
-      aperture_difference = std::max(aperture_difference, std::abs(dense.flow->aperture(j, end) - krylov.flow->aperture(j, end)));
-    }
-  }
-  EXPECT_GT(max_pressure, 1e5);
-  EXPECT_LT(pressure_difference, 1e-6 * max_pressure);
-  EXPECT_LT(aperture_difference, 1e-6 * max_aperture);
+  const FlowPathDifference d = flow_path_difference(dense, krylov);
+  EXPECT_GT(d.max_pressure, 1e5);
+  EXPECT_LT(d.pressure, 1e-6 * d.max_pressure);
+  EXPECT_LT(d.aperture, 1e-6 * d.max_aperture);
   EXPECT_GT(krylov.coupling->statistics().sensitivity_products, 0);
   EXPECT_EQ(dense.coupling->statistics().sensitivity_products, 0);
   EXPECT_LT(krylov.flow->mass_balance_error(), 1e-12);
   EXPECT_LT(krylov.flow->volume_balance_error(), 1e-8);
 }
 
-TEST(CoupledStep, AutomaticFlowJacobianTakesTheKrylovPathFromItsSize) {
-  // flow_jacobian: auto (the default) below kKrylovFromNodes wetted nodes is the dense
-  // path; with the bound lowered under the crack's node count, the Krylov path, to the
-  // same solution.
+TEST(CoupledStep, AugmentedPathGivesTheDenseSolution) {
+  // The flow Newton's steps from one sparse LU of [K -B D; E G A] solve J x = r exactly,
+  // as the dense LU does: the same Newton iterations, the pressures and apertures to far
+  // below the flow tolerance, no Krylov iteration, S never formed.
+  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  config.numerics.flow_jacobian = io::FlowJacobianKind::dense;
+  simulation::Model dense = simulation::build_model(config);
+  config.numerics.flow_jacobian = io::FlowJacobianKind::augmented;
+  simulation::Model augmented = simulation::build_model(config);
+  int newton[2] = {0, 0};
+  long krylov = 0;
+  for (int step = 0; step < 3; ++step) {
+    newton[0] += dense.step->advance(1.0, 0).flow_newton_iterations;
+    const StepStatistics stats = augmented.step->advance(1.0, 0);
+    newton[1] += stats.flow_newton_iterations;
+    krylov += stats.flow_krylov_iterations;
+  }
+  const FlowPathDifference d = flow_path_difference(dense, augmented);
+  std::printf("Newton iterations over 3 steps: %d dense, %d augmented; pressures within %.2e of %.3e Pa\n",
+              newton[0], newton[1], d.pressure, d.max_pressure);
+  EXPECT_GT(d.max_pressure, 1e5);
+  EXPECT_EQ(newton[1], newton[0]);  // the steps' Jacobian: a wrong one still converges, in more iterations
+  EXPECT_LT(d.pressure, 1e-9 * d.max_pressure);
+  EXPECT_LT(d.aperture, 1e-9 * d.max_aperture);
+  EXPECT_EQ(krylov, 0);
+  EXPECT_GT(augmented.coupling->statistics().sensitivity_products, 0);  // apertures as S p, S not formed
+  EXPECT_LT(augmented.flow->mass_balance_error(), 1e-12);
+}
+
+TEST(CoupledStep, AutomaticFlowJacobianTakesTheAugmentedPathFromItsSize) {
+  // flow_jacobian: auto (the default) below kOperatorFromNodes wetted nodes is the dense
+  // path; with the bound lowered under the crack's node count, the augmented path (S as
+  // an operator, no GMRES), to the same solution.
   io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
   ASSERT_EQ(config.numerics.flow_jacobian, io::FlowJacobianKind::automatic);
   double inlet_Pa[2] = {0.0, 0.0};
-  long products[2] = {0, 0};
-  for (const int from_nodes : {coupling::HydroMechanicalCoupling::kKrylovFromNodes, 1}) {
+  long products[2] = {0, 0}, krylov[2] = {0, 0};
+  for (const int from_nodes : {coupling::HydroMechanicalCoupling::kOperatorFromNodes, 1}) {
     const int k = from_nodes == 1 ? 1 : 0;
     simulation::Model model = simulation::build_model(config);
-    model.coupling->set_krylov_from_nodes(from_nodes);
-    model.step->advance(1.0, 0);
+    model.coupling->set_operator_from_nodes(from_nodes);
+    krylov[k] = model.step->advance(1.0, 0).flow_krylov_iterations;
     products[k] = model.coupling->statistics().sensitivity_products;
     inlet_Pa[k] = model.flow->pressure(mesh::nearest_point(model.system->mesh(), Vec2(0, 0)));
   }
   EXPECT_EQ(products[0], 0);  // dense: S formed, no products with the operator
   EXPECT_GT(products[1], 0);
+  EXPECT_EQ(krylov[1], 0);    // the augmented LU, not GMRES
   EXPECT_GT(inlet_Pa[0], 1e5);
   EXPECT_NEAR(inlet_Pa[1], inlet_Pa[0], 1e-6 * inlet_Pa[0]);
 }
