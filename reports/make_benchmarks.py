@@ -487,6 +487,10 @@ def scaling_section(results: Path, figure_path: Path | None) -> tuple[list[str],
         f"{ctx.get('timed_steps', '?')} timed steps, then one factorisation of K (`assemble_and_factorise`, "
         f"median of 3). A size is stopped when one phase (model build, a step) uses more than "
         f"{cap if cap is not None else '?'} s of CPU time, and the larger sizes of its path are then not started."
+        " The paths: dense (S formed, the flow Jacobian factorised densely), krylov (S applied as an operator, one "
+        "solve with K per product; GMRES with a two-level preconditioner) and augmented (S applied as an operator; "
+        "each flow Newton step one sparse LU of the mass balance together with the block displacements, design "
+        "notes section 46)."
         + (" Paths marked -cf run the same networks with the fluid's face load lumped at the joint ends "
            "(`numerics.fluid_load: lumped`, the load work-conjugate to the lumped nodal volumes, design notes "
            "section 19) and frictionless fracture faces (`friction_angle: 0`, design notes section 31); the others "
@@ -494,9 +498,9 @@ def scaling_section(results: Path, figure_path: Path | None) -> tuple[list[str],
         "",
         "Times are CPU seconds of the process (one thread), the measure used for the fits and the ratio: the "
         "machine is shared, and a busy neighbour stretches wall time (given beside it) more than CPU time. "
-        "Iterations are per timed step; Krylov iterations and products with S count on the krylov "
-        f"{'paths' if cf else 'path'} only "
-        "and cover the last attempt of a step that was cut. Memory is the peak resident set of the size's "
+        "Iterations are per timed step; Krylov iterations count on the krylov "
+        f"{'paths' if cf else 'path'} only, products with S on the krylov and augmented ones; they "
+        "cover the last attempt of a step that was cut. Memory is the peak resident set of the size's "
         "process.",
         ""]
     ok_rows = [r for r in rows if r["error"] is None]

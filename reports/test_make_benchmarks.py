@@ -86,9 +86,11 @@ class MakeBenchmarksTest(unittest.TestCase):
 def scaling_benchmark(ribs: int, krylov: int, step_cpu_s: float = 0.0, peak_rss_mb: float = 0.0,
                       error: str | None = None, cf: int | None = None) -> dict:
     """A row of bench_network_scaling's JSON (fishbone network: 24 ribs^2 + 1 wetted nodes);
-    cf None: a name without the conjugate_frictionless argument (runs from before it)."""
+    cf None: a name without the conjugate_frictionless argument (runs from before it).
+    krylov 2: the augmented path, under the argument's later name `jacobian`."""
     arg = "" if cf is None else f"/conjugate_frictionless:{cf}"
-    name = f"BM_NetworkScaling/ribs:{ribs}/krylov:{krylov}{arg}/iterations:1/manual_time"
+    argument = "jacobian" if krylov == 2 else "krylov"
+    name = f"BM_NetworkScaling/ribs:{ribs}/{argument}:{krylov}{arg}/iterations:1/manual_time"
     b = {"name": name, "run_name": name, "run_type": "iteration", "family_index": 1,
          "per_family_instance_index": ribs + 100 * krylov + 200 * (cf or 0), "repetitions": 1,
          "repetition_index": 0, "threads": 1, "iterations": 1, "real_time": 1.3 * step_cpu_s, "cpu_time": 0.01,
@@ -245,6 +247,26 @@ class NetworkScalingTest(unittest.TestCase):
         for lines in (fits, times, memory):  # one line per path, in the order of the paths
             self.assertEqual([md.count(line) for line in lines], [1, 1, 1, 1])
             self.assertEqual(sorted(lines, key=md.index), lines)
+
+    def test_augmented_paths_from_the_renamed_argument(self):
+        # Rows named jacobian:2 are the augmented paths, reported after krylov and krylov-cf,
+        # with their fits and verdicts (N^0.9 from 1,177 to 10,585 nodes in 3.4 GB: met).
+        n = lambda ribs: 24 * ribs * ribs + 1  # noqa: E731
+        run = [scaling_benchmark(7, 1, 1e-2 * n(7) ** 1.5, 200.0, cf=1),
+               scaling_benchmark(14, 1, 1e-2 * n(14) ** 1.5, 900.0, cf=1),
+               scaling_benchmark(7, 2, 1e-2 * n(7) ** 0.9, 500.0, cf=1),
+               scaling_benchmark(21, 2, 1e-2 * n(21) ** 0.9, 3400.0, cf=1),
+               scaling_benchmark(2, 2, 0.4, 80.0, cf=0)]
+        rows = make_benchmarks.scaling_rows(run)
+        self.assertEqual([(r["path"], r["ribs"]) for r in rows],
+                         [("augmented", 2), ("krylov-cf", 7), ("krylov-cf", 14), ("augmented-cf", 7),
+                          ("augmented-cf", 21)])
+        with tempfile.TemporaryDirectory() as tmp:
+            figure = Path(tmp) / make_benchmarks.SCALING_FIGURE
+            md = "\n".join(make_benchmarks.scaling_section(write_scaling(Path(tmp) / "s.json", run), figure)[0])
+        self.assertIn("- **augmented-cf: met**: exponent 0.90 against 1.2 (2 sizes, 1,177 to 10,585 wetted nodes).", md)
+        self.assertIn("- **krylov-cf: missed**: exponent 1.50 against 1.2", md)
+        self.assertIn("- **augmented-cf: met**: 10,585 wetted nodes peaked at 3,400 MB.", md)
 
     def test_old_runs_have_no_cf_path(self):
         # Names without conjugate_frictionless (the committed run): dense and krylov only, no -cf sentence.

@@ -293,7 +293,8 @@ class BlockSystem {
   /// rock mass held by its far-field loads, does not count).
   std::vector<int> mechanism_blocks() const;
 
-  /// The assembled matrix of the last open-close iteration (tests, benchmarks).
+  /// The assembled matrix of the last open-close iteration (the augmented flow system,
+  /// coupling/augmented_flow_system.hpp; tests, benchmarks).
   const BlockSparseMatrix& stiffness() const { return stiffness_; }
   /// Number of the K of the last assemble_and_factorise(): every assembly counts one.
   int stiffness_version() const { return stiffness_version_; }
