@@ -8,29 +8,13 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "coupling_test_support.hpp"
 #include "coupling/augmented_flow_system.hpp"
 #include "io/case_config.hpp"
 #include "simulation/model.hpp"
 
 namespace hfdda {
 namespace {
-
-const char* kAugmentedSystemCrack = R"(
-title: "fluid-filled crack for the augmented flow system"
-domain:
-  outer: {xmin: -20, xmax: 20, ymin: -20, ymax: 20}
-  inner: {xmin: -6, xmax: 6, ymin: -4, ymax: 4}
-mesh: {type: structured, cell_size: 1.0, outer_growth: 1.4, split: four}
-joints: {breakable: false}
-fractures:
-  - {name: crack, from: [-3, 0], to: [3, 0], initially_open: true, fluid_filled: true}
-fluid: {viscosity: 1.0e-3}
-injections:
-  - {at: [0, 0], mass_rate: 0.5}
-fixed_points: [[-20, -20], [20, -20], [20, 20], [-20, 20]]
-contact: {method: alm}
-time: {dt: 1.0, end_time: 1.0}
-)";
 
 /// The wetted joints' ends and nodes of a model, with their gaps G and unit-pressure loads B
 /// built as the coupling builds them.
@@ -66,7 +50,8 @@ CrackOperators crack_operators(const simulation::Model& model) {
 }
 
 TEST(AugmentedFlowSystem, PressurePartIsTheSchurComplementSolve) {
-  simulation::Model model = simulation::build_model(io::load_case_text(kAugmentedSystemCrack, "crack.yaml"));
+  simulation::Model model =
+      simulation::build_model(io::load_case_text(coupling_tests::kFluidFilledCrackCase, "crack.yaml"));
   model.step->advance(1.0, 0);
   const dda::BlockSystem& system = *model.system;
   const CrackOperators ops = crack_operators(model);
@@ -122,7 +107,8 @@ TEST(AugmentedFlowSystem, PressurePartIsTheSchurComplementSolve) {
 
 TEST(AugmentedFlowSystem, SingularSystemIsAConvergenceErrorNamingIt) {
   // No storage, no flow and every node at zero pressure: J = 0, no pivot for the pressures.
-  simulation::Model model = simulation::build_model(io::load_case_text(kAugmentedSystemCrack, "crack.yaml"));
+  simulation::Model model =
+      simulation::build_model(io::load_case_text(coupling_tests::kFluidFilledCrackCase, "crack.yaml"));
   model.step->advance(1.0, 0);
   const CrackOperators ops = crack_operators(model);
   const int n = static_cast<int>(ops.loads.size()), ne = static_cast<int>(ops.gaps.size());

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "coupling/coupled_step.hpp"
+#include "coupling_test_support.hpp"
 #include "coupling/prescribed_pressure.hpp"
 #include "dda/block_system.hpp"
 #include "io/case_config.hpp"
@@ -16,26 +17,10 @@
 namespace hfdda {
 namespace {
 
-const char* kCrackCase = R"(
-title: "closed fluid-filled crack"
-domain:
-  outer: {xmin: -20, xmax: 20, ymin: -20, ymax: 20}
-  inner: {xmin: -6, xmax: 6, ymin: -4, ymax: 4}
-mesh: {type: structured, cell_size: 1.0, outer_growth: 1.4, split: four}
-joints: {breakable: false}
-fractures:
-  - {name: crack, from: [-3, 0], to: [3, 0], initially_open: true, fluid_filled: true}
-fluid: {viscosity: 1.0e-3}
-injections:
-  - {at: [0, 0], mass_rate: 0.5}
-fixed_points: [[-20, -20], [20, -20], [20, 20], [-20, 20]]
-contact: {method: alm}
-numerics: {alm_tolerance: 1.0e-10}
-time: {dt: 1.0, end_time: 1.0}
-)";
+using coupling_tests::kFluidFilledCrackCase;
 
 TEST(CoupledStep, MatchesMechanicsLoadedByTheSolvedPressures) {
-  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  io::CaseConfig config = io::load_case_text(kFluidFilledCrackCase, "crack.yaml");
   simulation::Model coupled = simulation::build_model(config);
   coupled.step->advance(1.0, 0);
   const fluid::FlowNetwork& flow = *coupled.flow;
@@ -106,7 +91,7 @@ TEST(CoupledStep, KrylovPathGivesTheDenseSolution) {
   // The same steps with S formed densely and with S as an operator (GMRES, two-level
   // preconditioner): the pressures and apertures agree to the flow tolerance, and the
   // Krylov path never forms S (its products are counted).
-  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  io::CaseConfig config = io::load_case_text(kFluidFilledCrackCase, "crack.yaml");
   config.numerics.flow_jacobian = io::FlowJacobianKind::dense;
   simulation::Model dense = simulation::build_model(config);
   config.numerics.flow_jacobian = io::FlowJacobianKind::krylov;
@@ -130,7 +115,7 @@ TEST(CoupledStep, AugmentedPathGivesTheDenseSolution) {
   // The flow Newton's steps from one sparse LU of [K -B D; E G A] solve J x = r exactly,
   // as the dense LU does: the same Newton iterations, the pressures and apertures to far
   // below the flow tolerance, no Krylov iteration, S never formed.
-  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  io::CaseConfig config = io::load_case_text(kFluidFilledCrackCase, "crack.yaml");
   config.numerics.flow_jacobian = io::FlowJacobianKind::dense;
   simulation::Model dense = simulation::build_model(config);
   config.numerics.flow_jacobian = io::FlowJacobianKind::augmented;
@@ -159,7 +144,7 @@ TEST(CoupledStep, AutomaticFlowJacobianTakesTheAugmentedPathFromItsSize) {
   // flow_jacobian: auto (the default) below kOperatorFromNodes wetted nodes is the dense
   // path; with the bound lowered under the crack's node count, the augmented path (S as
   // an operator, no GMRES), to the same solution.
-  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  io::CaseConfig config = io::load_case_text(kFluidFilledCrackCase, "crack.yaml");
   ASSERT_EQ(config.numerics.flow_jacobian, io::FlowJacobianKind::automatic);
   double inlet_Pa[2] = {0.0, 0.0};
   long products[2] = {0, 0}, krylov[2] = {0, 0};
@@ -182,7 +167,7 @@ TEST(CoupledStep, NearFieldOfTheElasticCouplingCutsTheKrylovIterations) {
   // The Krylov path's preconditioner with the probed near field of S in its local part,
   // and without it (A alone): the same Newton iterates, fewer GMRES iterations. Linear
   // solves to 1e-10 throughout, so that the iterates do not depend on the preconditioner.
-  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  io::CaseConfig config = io::load_case_text(kFluidFilledCrackCase, "crack.yaml");
   config.numerics.flow_jacobian = io::FlowJacobianKind::krylov;
   config.numerics.inexact_flow_solves = false;
   long gmres[2] = {0, 0};
@@ -211,7 +196,7 @@ TEST(CoupledStep, InexactFlowSolvesCutTheKrylovIterations) {
   // GMRES stopped at 1e-4 while the flow Newton converges well, against every solve to
   // 1e-10: fewer GMRES iterations, no more Newton iterations than a few, and the same
   // pressures to the flow tolerance (docs/design_notes.md section 43).
-  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  io::CaseConfig config = io::load_case_text(kFluidFilledCrackCase, "crack.yaml");
   config.numerics.flow_jacobian = io::FlowJacobianKind::krylov;
   long gmres[2] = {0, 0};
   int newton[2] = {0, 0};
@@ -238,7 +223,7 @@ TEST(CoupledStep, ClosedCrackFillsAndOpensStepAfterStep) {
   // The inlet pressure may fall once the early viscous gradient relaxes, and the crack
   // first opens faster than the fluid arrives (its ends fill at zero pressure); its
   // volume must rise while fluid keeps coming, and the ends fill up in the end.
-  io::CaseConfig config = io::load_case_text(kCrackCase, "crack.yaml");
+  io::CaseConfig config = io::load_case_text(kFluidFilledCrackCase, "crack.yaml");
   simulation::Model model = simulation::build_model(config);
   const auto& mesh = model.system->mesh();
   const int far_end = mesh::nearest_point(mesh, Vec2(2, 0));
