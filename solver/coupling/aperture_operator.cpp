@@ -184,11 +184,11 @@ double ApertureOperator::self_entry(int end, int node) const {
 
 void ApertureOperator::factorize(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
                                  const Eigen::VectorXd& d) {
-  a_ = a, e_ = e, d_ = d;
-  if (augmented_) {
+  if (augmented_) {  // A, E and d are kept only for GMRES's products with J
     augmented_->factorize(a, e, d);
     return;
   }
+  a_ = a, e_ = e, d_ = d;
   const int n = n_nodes(), m = n_aggregates();
   if (n_colours_ > 0) {
     // Local part with the probed near field of S: A + E S_near diag(d). A probe also

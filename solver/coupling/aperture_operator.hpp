@@ -79,7 +79,7 @@ class ApertureOperator final : public fluid::ApertureModel {
   /// The augmented system's LU factorisations so far (0 on the GMRES path).
   int augmented_factorizations() const { return augmented_ ? augmented_->factorizations() : 0; }
 
-  /// J v for the last factorize (one product with S).
+  /// J v for the last factorize (one product with S; GMRES path only).
   Eigen::VectorXd jacobian_times(const Eigen::VectorXd& v) const;
   /// The two-level preconditioner applied to v.
   Eigen::VectorXd precondition(const Eigen::VectorXd& v) const;
