@@ -87,6 +87,9 @@ class LoadRamp {
   double tips_critical_level(const std::vector<fracture::CrackTip>& now) const;
   /// State of every contact (open, locked, sliding; bonded; vertex-vertex active).
   static std::vector<std::uint8_t> contact_states(const dda::BlockSystem& system);
+  /// A closed, unbonded contact whose normal and shear forces are both at most this
+  /// fraction of the largest contact force counts as open in contact_states().
+  static constexpr double kInertContactForce = 1.0e-6;
   void try_jump(const dda::BlockSystem& system);
   bool stop_condition_met(const dda::BlockSystem& system);
 

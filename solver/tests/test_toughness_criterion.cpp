@@ -234,6 +234,32 @@ TEST(ToughnessCriterion, LevelAtCriticalRatioScalesWithTheSquareRootOfGcOverG) {
             std::numeric_limits<double>::infinity());
 }
 
+TEST(ToughnessCriterion, LevelAtCriticalRatioIgnoresAnOpeningOfRoundOffSizeAtTheTip) {
+  // A tip loaded in proportion to the level, as in a load ramp, whose opening at the tip
+  // point itself is round-off (the faces share that point): +1.1e-12 m at the first level
+  // and +4.3e-16 m at the second (the LEFM Mode I run of L = 0.25 m, a = 2 m, at 344 and
+  // 346 kPa). Extrapolated past the second level it changes sign, so the far contact's
+  // pair F_far d(0) counts at one level and not at the root: a change of about 1e-8 in the
+  // ratio, which must not turn a prediction into "never".
+  const Toughness toughness{1.0e6, 1.0e6};
+  const double level_a = 344.0e3, level_b = 346.0e3;
+  const double gc = energy_release_rate_J_m2(1.0e6, kModulus);
+  const double opening_per_Pa = 4.4e-5 / level_b;
+  const double force_per_Pa = 0.98 * gc / (kLumpedClosureFactor * level_b * level_b * opening_per_Pa);
+  auto at_level = [&](double s, double near_opening_m) {
+    CrackTip t = tip_with(force_per_Pa * s, opening_per_Pa * s);
+    t.far_normal_N = 0.3 * force_per_Pa * s;
+    t.near_opening_m = near_opening_m;
+    return t;
+  };
+  const double clean = level_at_critical_ratio(level_a, at_level(level_a, 0.0), level_b, at_level(level_b, 0.0), toughness);
+  ASSERT_NEAR(clean / (level_b / std::sqrt(0.98)), 1.0, 1e-12);
+  const double with_round_off =
+      level_at_critical_ratio(level_a, at_level(level_a, 1.1475e-12), level_b, at_level(level_b, 4.3e-16), toughness);
+  ASSERT_TRUE(std::isfinite(with_round_off));
+  EXPECT_NEAR(with_round_off / clean, 1.0, 1e-6);
+}
+
 TEST(ToughnessCriterion, CriticalTipsAreEveryTipAtOrAboveOne) {
   EXPECT_TRUE(critical_tips({0.5, 0.99}).empty());
   EXPECT_EQ(critical_tips({0.5, 1.2, 1.0}), (std::vector<int>{1, 2}));
