@@ -132,8 +132,9 @@ double level_at_critical_ratio(double level_a, const CrackTip& tip_a, double lev
   // The quadratic knows nothing of the contacts that stop pulling (G_I >= 0 per contact):
   // trust the root only if the tip there is critical indeed. A contact that stops pulling
   // takes its whole share of G; a term of round-off size that changes sign between the
-  // two levels (the opening at the tip point itself, about 1e-16 m) moves the ratio by
-  // about 1e-8, which must not veto the prediction.
+  // two levels (the opening at the tip point itself, 1e-16 to 1e-12 m) moves it by more
+  // than 1e-9 (unit test ...IgnoresAnOpeningOfRoundOffSizeAtTheTip), which must not veto
+  // the prediction.
   if (mixed_mode_ratio(interpolated(tip_a, tip_b, 1.0 + w), toughness) < 1.0 - 1e-6) return kNever;
   return level_b + w * (level_b - level_a);
 }

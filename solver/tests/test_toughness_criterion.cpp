@@ -239,8 +239,8 @@ TEST(ToughnessCriterion, LevelAtCriticalRatioIgnoresAnOpeningOfRoundOffSizeAtThe
   // point itself is round-off (the faces share that point): +1.1e-12 m at the first level
   // and +4.3e-16 m at the second (the LEFM Mode I run of L = 0.25 m, a = 2 m, at 344 and
   // 346 kPa). Extrapolated past the second level it changes sign, so the far contact's
-  // pair F_far d(0) counts at one level and not at the root: a change of about 1e-8 in the
-  // ratio, which must not turn a prediction into "never".
+  // pair F_far d(0) counts at one level and not at the root: a change of more than 1e-9 in
+  // the ratio (the old tolerance), which must not turn a prediction into "never".
   const Toughness toughness{1.0e6, 1.0e6};
   const double level_a = 344.0e3, level_b = 346.0e3;
   const double gc = energy_release_rate_J_m2(1.0e6, kModulus);
