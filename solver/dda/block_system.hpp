@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "core/anderson_acceleration.hpp"
 #include "core/step_statistics.hpp"
 #include "dda/block_loads.hpp"
 #include "dda/block_sparse_matrix.hpp"
@@ -339,6 +340,9 @@ class BlockSystem {
   /// |K x - b| / |b| of a check solve above which a corrected factorisation is dropped;
   /// a solve with a new factorisation of the KGD case's K leaves 1e-9 (section 26).
   static constexpr double kLowRankResidual = 1e-7;
+  /// Iterates of the friction normal forces that their acceleration combines: a wedge of
+  /// a few sliding contacts is a fixed point of as many coupled forces.
+  static constexpr int kFrictionAccelerationDepth = 5;
   /// A contact's spring terms in K: normal (2 k) and shear (2 k + 1) of its springs k.
   struct ContactTerms {
     std::array<SpringTerm, 4> term;
@@ -407,6 +411,12 @@ class BlockSystem {
   std::vector<ContactState> next_joint_state_;  ///< joint states after this round's changes
   std::vector<double> alm_corrections_, alm_previous_corrections_;  ///< k g, k s per contact
   int alm_worst_contact_ = -1;   // contact of the largest correction
+  // The friction normal forces of held sliding contacts within one contact solve, as a
+  // fixed point accelerated over its last iterates (follow_friction_normal_forces).
+  AndersonAcceleration friction_acceleration_{kFrictionAccelerationDepth};
+  std::vector<int> friction_contacts_;  // the contacts of its vector, in order
+  bool friction_accelerated_ = false;   // the plain iteration stopped contracting
+  double friction_residual_N_ = -1.0;   // |G(N) - N| of the last iterate (-1: none yet)
 
   BlockSparseMatrix stiffness_;
   SpdSolver solver_;

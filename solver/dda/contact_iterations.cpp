@@ -103,6 +103,10 @@ void BlockSystem::begin_contact_iterations() {
   alm_corrections_.assign(2 * contacts_.size(), 0.0);
   alm_previous_corrections_.assign(2 * contacts_.size(), 0.0);
   alm_worst_contact_ = -1;
+  friction_acceleration_.reset();
+  friction_contacts_.clear();
+  friction_accelerated_ = false;
+  friction_residual_N_ = -1.0;
 }
 
 Eigen::VectorXd BlockSystem::contact_rhs() const {
@@ -137,8 +141,14 @@ bool BlockSystem::follow_friction_normal_forces(const Eigen::VectorXd& d) {
   // (penalty) spring's normal force is k g(D): taken at the start of the step, friction
   // lags the normal force by a step, and under a constant load a wedge of sliding
   // contacts winds its forces up from step to step (docs/design_notes.md section 41).
+  // Within the contact solve the forces are a fixed point N = G(N) (the solve with the
+  // friction of N gives the normal forces G(N)); in a wedge whose friction angle exceeds
+  // its angle the plain iteration N <- G(N) diverges with alternating sign although the
+  // fixed point exists, so the iterates are accelerated (section 48).
   bool moved = false;
   const double round_off_force = settings_.normal_stiffness_N_m * gap_round_off_m_;
+  std::vector<int> contacts;
+  std::vector<double> used_forces, now_forces;
   for (auto& c : contacts_.all()) {
     if (c.state != ContactState::sliding || c.joint < 0 || c.tan_friction == 0.0) continue;
     if (settings_.augmented_lagrangian && iterated(c)) continue;  // the multiplier follows the solution
@@ -155,8 +165,29 @@ bool BlockSystem::follow_friction_normal_forces(const Eigen::VectorXd& d) {
     const double used = first_iterate ? std::max(-normal_used, 0.0) : c.friction_normal_N;
     const double now = std::max(-normal_now, 0.0);
     if (std::abs(now - used) > kFrictionNormalTolerance * std::max(now, used) + round_off_force) moved = true;
-    c.friction_normal_N = now;
+    contacts.push_back(contacts_.index_of(c));
+    used_forces.push_back(used);
+    now_forces.push_back(now);
   }
+  if (contacts != friction_contacts_) {
+    friction_acceleration_.reset();
+    friction_contacts_ = contacts;
+    friction_accelerated_ = false;
+    friction_residual_N_ = -1.0;
+  }
+  const Eigen::Map<const Eigen::VectorXd> used(used_forces.data(), static_cast<Eigen::Index>(used_forces.size()));
+  const Eigen::Map<const Eigen::VectorXd> now(now_forces.data(), static_cast<Eigen::Index>(now_forces.size()));
+  const Eigen::VectorXd next = friction_acceleration_.next(used, now);
+  // The plain iterate while the iteration contracts: the acceleration extrapolates, and
+  // an extrapolated iterate is solved with the flow like any other. Once the residual
+  // stops shrinking (a wedge's gain above one) the solve takes the accelerated iterates.
+  const double residual = (now - used).norm();
+  if (friction_residual_N_ >= 0.0 && residual >= friction_residual_N_) friction_accelerated_ = true;
+  friction_residual_N_ = residual;
+  const Eigen::VectorXd chosen = friction_accelerated_ ? next : Eigen::VectorXd(now);
+  auto& all = contacts_.all();
+  for (std::size_t i = 0; i < contacts.size(); ++i)
+    all[contacts[i]].friction_normal_N = std::max(chosen[static_cast<Eigen::Index>(i)], 0.0);  // compression only
   return moved;
 }
 

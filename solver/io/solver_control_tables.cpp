@@ -110,11 +110,12 @@ const Table<NumericsConfig>& numerics_table() {
        boolean({"friction_at_solution", "", "§2.3, eq. 2.16: false (the normal force at the step's start)",
                 "sliding contacts whose springs are held through the step (penalty contacts, two-tier "
                 "contacts' unbonded ones): true, friction acts with the normal force of the contact iterate, "
-                "iterated to 0.1 % (at most 30 iterates), and a contact re-locks when its slip in the step "
+                "iterated to 0.1 % (at most 30 iterates; accelerated once the plain iteration stops contracting, "
+                "as in a wedge sharper than the friction angle), and a contact re-locks when its slip in the step "
                 "reverses, where it was at the step's start; false, friction acts with the normal force at the "
                 "step's start and a contact re-locks once its slip since it last locked reverses. True removes "
                 "the windup of sliding wedges under a constant load but changes the network cases' findings "
-                "(docs/design_notes.md section 41)"},
+                "(docs/design_notes.md sections 41 and 48)"},
                &NumericsConfig::friction_at_solution),
        boolean({"failures_on_settled_contacts", "", "none (HFDDA): the seed checks contact states and bond failures in the same round (2.3)",
                 "true: a bond may fail only in an open-close round in which no contact changes state, so "
