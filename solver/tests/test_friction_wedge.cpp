@@ -130,7 +130,7 @@ void expect_wedge_slides(bool friction_at_solution) {
 
 // Measured: within 2e-5 of W of the balance after 1 and 3 steps. Without the acceleration
 // (plain iteration N <- G(N)) the friction is frozen after 30 iterates and the faces end
-// locked with N = 57,700 N against a balance of 4,265 N: the wedge jams.
+// locked after three steps with N = 58,500 N against a balance of 4,265 N: the wedge jams.
 TEST(FrictionWedge, SlidesWithTheFrictionOfItsNormalForceAtTheSolution) { expect_wedge_slides(true); }
 
 // The default law (numerics.friction_at_solution: false) takes the friction of the normal
