@@ -8,7 +8,8 @@ void AndersonAcceleration::reset() {
   has_previous_ = false;
 }
 
-Eigen::VectorXd AndersonAcceleration::next(const Eigen::VectorXd& x, const Eigen::VectorXd& g) {
+Eigen::VectorXd AndersonAcceleration::next(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                           const Eigen::Ref<const Eigen::VectorXd>& g) {
   if (has_previous_ && g.size() != g_previous_.size()) reset();
   const Eigen::VectorXd f = g - x;
   if (has_previous_) {

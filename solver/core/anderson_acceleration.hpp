@@ -24,7 +24,7 @@ class AndersonAcceleration {
   /// x: the iterate G was evaluated at; g = G(x). Returns the next iterate: g itself
   /// until a difference is known, then g - dG gamma with gamma minimising
   /// |f - dF gamma| over the stored differences. A change of size starts afresh.
-  Eigen::VectorXd next(const Eigen::VectorXd& x, const Eigen::VectorXd& g);
+  Eigen::VectorXd next(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& g);
 
   /// Stored differences (0 after reset and after the first evaluation).
   int columns() const { return static_cast<int>(dg_.size()); }

@@ -362,6 +362,8 @@ class BlockSystem {
   /// Sets the friction normal force of every sliding contact with held springs to its
   /// value at `d`; true if one moved by more than the tolerance since the last iterate.
   bool follow_friction_normal_forces(const Eigen::VectorXd& d);
+  /// Forgets the friction fixed point's history (a new contact solve or set of contacts).
+  void restart_friction_fixed_point();
   /// matrix += stiffness e e^T for the spring term's e (the slot of its block pair).
   static void add_spring_term(BlockSparseMatrix& matrix, int slot, const SpringTerm& t, double stiffness);
   /// The contact's multipliers are iterated (Augmented Lagrangian) rather than held (two-tier penalty).
@@ -417,6 +419,8 @@ class BlockSystem {
   std::vector<int> friction_contacts_;  // the contacts of its vector, in order
   bool friction_accelerated_ = false;   // the plain iteration stopped contracting
   double friction_residual_N_ = -1.0;   // |G(N) - N| of the last iterate (-1: none yet)
+  std::vector<int> friction_scratch_contacts_;           // this iterate's contacts
+  std::vector<double> friction_used_N_, friction_now_N_;  // N and G(N) of this iterate
 
   BlockSparseMatrix stiffness_;
   SpdSolver solver_;

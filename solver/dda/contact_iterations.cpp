@@ -103,8 +103,12 @@ void BlockSystem::begin_contact_iterations() {
   alm_corrections_.assign(2 * contacts_.size(), 0.0);
   alm_previous_corrections_.assign(2 * contacts_.size(), 0.0);
   alm_worst_contact_ = -1;
-  friction_acceleration_.reset();
   friction_contacts_.clear();
+  restart_friction_fixed_point();
+}
+
+void BlockSystem::restart_friction_fixed_point() {
+  friction_acceleration_.reset();
   friction_accelerated_ = false;
   friction_residual_N_ = -1.0;
 }
@@ -147,8 +151,13 @@ bool BlockSystem::follow_friction_normal_forces(const Eigen::VectorXd& d) {
   // fixed point exists, so the iterates are accelerated (section 48).
   bool moved = false;
   const double round_off_force = settings_.normal_stiffness_N_m * gap_round_off_m_;
-  std::vector<int> contacts;
-  std::vector<double> used_forces, now_forces;
+  // Buffers kept between iterates: this runs once per contact iterate.
+  std::vector<int>& contacts = friction_scratch_contacts_;
+  std::vector<double>& used_forces = friction_used_N_;
+  std::vector<double>& now_forces = friction_now_N_;
+  contacts.clear();
+  used_forces.clear();
+  now_forces.clear();
   for (auto& c : contacts_.all()) {
     if (c.state != ContactState::sliding || c.joint < 0 || c.tan_friction == 0.0) continue;
     if (settings_.augmented_lagrangian && iterated(c)) continue;  // the multiplier follows the solution
@@ -169,11 +178,10 @@ bool BlockSystem::follow_friction_normal_forces(const Eigen::VectorXd& d) {
     used_forces.push_back(used);
     now_forces.push_back(now);
   }
+  if (contacts.empty()) return moved;
   if (contacts != friction_contacts_) {
-    friction_acceleration_.reset();
     friction_contacts_ = contacts;
-    friction_accelerated_ = false;
-    friction_residual_N_ = -1.0;
+    restart_friction_fixed_point();
   }
   const Eigen::Map<const Eigen::VectorXd> used(used_forces.data(), static_cast<Eigen::Index>(used_forces.size()));
   const Eigen::Map<const Eigen::VectorXd> now(now_forces.data(), static_cast<Eigen::Index>(now_forces.size()));
