@@ -41,6 +41,9 @@ struct StepStatistics {
   int max_active_vertex_vertex = 0; ///< largest active count at the end of a step
   double max_penetration_m = 0.0;
   double max_block_strain = 0.0;    ///< largest principal strain increment of a block, accepted steps
+  /// Largest tension on a closed joint contact whose bond is broken, accepted steps [Pa]
+  /// (dda::BlockSystem::largest_unbonded_tension_Pa).
+  double max_unbonded_tension_Pa = 0.0;
 
   // --- fluid coupling (seed 2.1, 2.4) ---------------------------------------------
   int step_cuts = 0;                ///< halvings of the step after a failed attempt
@@ -87,6 +90,7 @@ struct StepStatistics {
     max_active_vertex_vertex = std::max(max_active_vertex_vertex, later.max_active_vertex_vertex);
     max_penetration_m = std::max(max_penetration_m, later.max_penetration_m);
     max_block_strain = std::max(max_block_strain, later.max_block_strain);
+    max_unbonded_tension_Pa = std::max(max_unbonded_tension_Pa, later.max_unbonded_tension_Pa);
     step_cuts += later.step_cuts;
     fractures_wetted += later.fractures_wetted;
     flow_solves += later.flow_solves;

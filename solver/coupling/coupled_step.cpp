@@ -98,6 +98,7 @@ StepStatistics CoupledStep::attempt(double dt_s) {
     const Eigen::VectorXd d = open_close_iterations(stats);
     reject_overlapping_faces(d);
     reject_crushed_blocks(d, stats);
+    stats.max_unbonded_tension_Pa = mechanics_.largest_unbonded_tension_Pa(d);  // reported, not a guard
     mechanics_.commit(d, dt_s, stats);
     for (FluidLoadModel* f : fluids_) f->commit(mechanics_);
   } catch (...) {

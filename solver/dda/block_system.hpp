@@ -244,6 +244,12 @@ class BlockSystem {
     int block = -1;
   };
   BlockStrain largest_step_strain(const Eigen::VectorXd& d) const;
+  /// The largest tension [Pa: normal force over the contact's length] on a closed joint
+  /// contact whose bond is broken, at the trial displacement d; 0 if none pulls. The
+  /// contact law allows none (such a contact opens), so a committed state with one is a
+  /// contact the cycle rule held closed: the precursor of the collapses of design notes
+  /// section 49.
+  double largest_unbonded_tension_Pa(const Eigen::VectorXd& d) const;
 
   // --- state queries --------------------------------------------------------------
   const mesh::Mesh& mesh() const { return mesh_; }

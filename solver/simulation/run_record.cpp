@@ -117,6 +117,11 @@ std::vector<OutputColumn> make_fixed_columns() {
        [](const StepContext& c) { return c.max_overlap_m; }},
       {"max_block_strain", "-", "largest principal strain increment of a block in the step (a step above 0.1 is refused)",
        [](const StepContext& c) { return c.stats.max_block_strain; }},
+      {"max_unbonded_tension_Pa", "Pa",
+       "largest tension on a closed joint contact whose bond is broken (the contact law allows none: normally a "
+       "contact held closed by the cycle rule; growing from step to step, it came before the collapses of design notes "
+       "section 49)",
+       [](const StepContext& c) { return c.stats.max_unbonded_tension_Pa; }},
       {"step_wall_s", "s", "wall time of the step", [](const StepContext& c) { return c.stats.seconds_total; }},
       {"elapsed_wall_s", "s", "wall time of the run so far", [](const StepContext& c) { return c.elapsed_s; }},
       {"step_cuts", "-", "halvings of the step after a failed attempt (0 without a flow network)",
@@ -301,6 +306,8 @@ const std::vector<SummaryField>& summary_solver_fields() {
        true},
       {"friction_iterations_frozen", "contact solves whose sliding friction was frozen before its normal force settled",
        [](const StepStatistics& t) { return double(t.friction_iterations_frozen); }, true},
+      {"max_unbonded_tension_Pa", "largest tension on a closed contact whose bond is broken [Pa]",
+       [](const StepStatistics& t) { return t.max_unbonded_tension_Pa; }},
       {"max_alm_stall_mismatch", "largest mismatch accepted at a stall",
        [](const StepStatistics& t) { return t.max_alm_stall_mismatch; }},
       {"steps_with_cycles", "(sub-)steps that ended with a contact held on an open-close cycle",

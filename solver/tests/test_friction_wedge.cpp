@@ -29,6 +29,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <numbers>
 
 #include "coupling/coupled_step.hpp"
@@ -56,7 +57,9 @@ struct WedgeRun {
   double drop_m = 0.0;  ///< the wedge's downward displacement in the last step
 };
 
-WedgeRun press_wedge(bool friction_at_solution, int steps) {
+/// Presses the wedge for `steps` steps; `inspect` (if any) then sees the system.
+WedgeRun press_wedge(bool friction_at_solution, int steps,
+                     const std::function<void(BlockSystem&)>& inspect = {}) {
   const double t = kWedgeHeight_m * std::tan(radians(kWedgeHalfAngleDeg));
   const double h = kWedgeHeight_m, w = kBaseWidth_m, d = kBaseDepth_m;
   mesh::Mesh m;
@@ -84,6 +87,7 @@ WedgeRun press_wedge(bool friction_at_solution, int steps) {
   WedgeRun run;
   for (int k = 0; k < steps; ++k) run.frozen += step.advance(kDt_s, 0).friction_iterations_frozen;
   run.drop_m = -system.last_step_displacement()[kWedge](1);  // v0 of the centroid
+  if (inspect) inspect(system);
 
   for (int j = 0; j < static_cast<int>(m.joints.size()); ++j) {
     const mesh::Joint& joint_j = m.joints[j];
@@ -139,6 +143,41 @@ TEST(FrictionWedge, SlidesWithTheFrictionOfItsNormalForceAtTheSolution) { expect
 // the windup behind the crushed blocks of design notes sections 41 and 42, kept to
 // reproduce it.
 TEST(FrictionWedge, DISABLED_WithTheDefaultLaw) { expect_wedge_slides(false); }
+
+// The report of closed, unbonded contacts that pull (history column
+// max_unbonded_tension_Pa): none in the sliding wedge as committed; lifted by 1 mm, each
+// face end pulls with its committed normal force plus k_n times the opening, 1 mm times
+// sin(alpha), over its length (half the face).
+TEST(FrictionWedge, UnbondedTensionOfTheSlidingFacesIsZeroAndThatOfALiftedWedgeIsItsSpringsPull) {
+  press_wedge(true, 1, [](BlockSystem& system) {
+    system.begin_step(kDt_s);  // the springs linearised at the committed state: d is measured from it
+    const Eigen::VectorXd at_rest = Eigen::VectorXd::Zero(6 * system.n_blocks());
+    EXPECT_EQ(system.largest_unbonded_tension_Pa(at_rest), 0.0);
+    const double lift_m = 1e-3;
+    Eigen::VectorXd lifted = at_rest;
+    lifted[6 * kWedge + 1] = lift_m;  // v0 of the wedge
+    const double kn = kSpringStiffnessRatio * kYoungsModulus_Pa;
+    const double opening_m = lift_m * std::sin(radians(kWedgeHalfAngleDeg));
+    double expected = 0.0;
+    int wedge_ends = 0;
+    for (int j = 0; j < static_cast<int>(system.mesh().joints.size()); ++j) {
+      const mesh::Joint& joint = system.mesh().joints[j];
+      if (joint.block_a != kWedge && joint.block_b != kWedge) continue;
+      for (int c : system.joint_contacts(j)) {
+        ASSERT_FALSE(system.contacts()[c].bonded);
+        ASSERT_NE(system.contacts()[c].state, ContactState::open);
+        const double length_m = system.contacts()[c].length_m;
+        expected = std::max(expected, (system.contact_forces(c).first + kn * opening_m) / length_m);
+        ++wedge_ends;
+      }
+    }
+    EXPECT_EQ(wedge_ends, 4);
+    EXPECT_GT(expected, 0.0);
+    // The committed force comes from the exact geometry, the trial from the springs
+    // linearised at it: measured to agree to 4e-7.
+    EXPECT_NEAR(system.largest_unbonded_tension_Pa(lifted), expected, 1e-6 * expected);
+  });
+}
 
 }  // namespace
 }  // namespace hfdda::dda
