@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <vector>
 #include <nlohmann/json.hpp>
@@ -145,6 +146,7 @@ json record_json(const RealisationRecord& r) {
                     {"max_aperture_m", r.quality.max_aperture_m},
                     {"max_overlap_m", r.quality.max_overlap_m},
                     {"max_cycle_holds", r.quality.max_cycle_holds},
+                    {"max_unbonded_tension_Pa", r.quality.max_unbonded_tension_Pa},
                     {"final_injection_pressure_Pa", r.quality.final_injection_pressure_Pa}};
   json& seeds = j["seeds"];
   for (const auto& [group, seed] : r.seeds.of_group) seeds[group] = seed;
@@ -183,6 +185,8 @@ RealisationRecord record_from(const json& j) {
     r.quality.max_aperture_m = q.at("max_aperture_m");
     r.quality.max_overlap_m = q.at("max_overlap_m");
     r.quality.max_cycle_holds = q.at("max_cycle_holds");
+    // Records written before it was kept have none.
+    r.quality.max_unbonded_tension_Pa = q.value("max_unbonded_tension_Pa", std::numeric_limits<double>::quiet_NaN());
     r.quality.final_injection_pressure_Pa = q.at("final_injection_pressure_Pa");
   }
   if (j.contains("schedule")) {  // records written before it was kept have none

@@ -119,6 +119,7 @@ RealisationQuality realisation_quality(const simulation::RunRecord& history) {
   q.max_aperture_m = largest("max_aperture_m");
   q.max_overlap_m = largest("max_overlap_m");
   q.max_cycle_holds = static_cast<int>(largest("cycle_holds"));
+  q.max_unbonded_tension_Pa = largest("max_unbonded_tension_Pa");
   if (history.has("injection_pressure_Pa"))
     q.final_injection_pressure_Pa = history.value(history.rows() - 1, "injection_pressure_Pa");
   return q;

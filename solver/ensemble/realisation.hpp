@@ -60,6 +60,9 @@ struct RealisationQuality {
   double max_aperture_m = 0.0;       ///< largest joint opening of a committed step [m]
   double max_overlap_m = 0.0;        ///< largest overlap of a joint's faces, committed [m]
   int max_cycle_holds = 0;           ///< most contacts held by the cycle rule in one step
+  /// Largest tension on a closed contact whose bond is broken at a committed step [Pa]
+  /// (history's max_unbonded_tension_Pa; NaN in records written before it was kept).
+  double max_unbonded_tension_Pa = 0.0;
   double final_injection_pressure_Pa = 0.0;  ///< at the last committed step (0 without a flow)
 };
 
