@@ -246,9 +246,9 @@ class BlockSystem {
   BlockStrain largest_step_strain(const Eigen::VectorXd& d) const;
   /// The largest tension [Pa: normal force over the contact's length] on a closed joint
   /// contact whose bond is broken, at the trial displacement d; 0 if none pulls. The
-  /// contact law allows none (such a contact opens), so a committed state with one is a
-  /// contact the cycle rule held closed: the precursor of the collapses of design notes
-  /// section 49.
+  /// contact law allows none (the open-close check opens it), so a committed state with one
+  /// normally holds a contact that the cycle rule kept closed; growing from step to step,
+  /// it came before the collapses of design notes section 49.
   double largest_unbonded_tension_Pa(const Eigen::VectorXd& d) const;
 
   // --- state queries --------------------------------------------------------------
