@@ -161,11 +161,8 @@ double BlockSystem::largest_unbonded_tension_Pa(const Eigen::VectorXd& d) const 
   for (int ci = 0; ci < contacts_.n_joint_contacts(); ++ci) {
     const Contact& c = contacts_[ci];
     if (c.state == ContactState::open || c.bonded || c.length_m <= 0.0) continue;
-    const double kn = normal_stiffness(c);
-    double normal_N = 0.0;  // tension positive, as in trial_traction
-    for (int k = 0; k < c.n_springs; ++k)
-      normal_N += (c.springs[k].normal_multiplier_N + kn * spring_gap(c.springs[k], d)) / c.n_springs;
-    largest = std::max(largest, normal_N / c.length_m);
+    StepStatistics unused;  // the query records nothing in the step's statistics
+    largest = std::max(largest, trial_traction(c, d, unused).normal_N / c.length_m);  // tension positive
   }
   return largest;
 }
